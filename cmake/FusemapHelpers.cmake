@@ -1,0 +1,19 @@
+# One library per module: sources are every .cc in src/<module>, public headers live in
+# include/fusemap/<module>. DEPS names lower modules or imported targets, so the build
+# enforces the dependency direction of STYLE.md.
+function(fusemap_module name)
+  cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
+  file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  add_library(fusemap_${name} STATIC ${srcs})
+  target_include_directories(fusemap_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
+  target_link_libraries(fusemap_${name} PUBLIC ${ARG_DEPS})
+  target_compile_options(fusemap_${name} PRIVATE -Wall -Wextra)
+endfunction()
+
+# A tool binary: fusemap_tool(fusemap_offline SOURCES main.cc DEPS fusemap_io ...)
+function(fusemap_tool name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  target_compile_options(${name} PRIVATE -Wall -Wextra)
+endfunction()

@@ -1,0 +1,30 @@
+#ifndef FUSEMAP_COMMON_MATH_H_
+#define FUSEMAP_COMMON_MATH_H_
+
+#include <cmath>
+
+namespace fusemap {
+namespace common {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Wraps an angle to [-pi, pi).
+template <typename T>
+T NormalizeAngle(T angle_rad) {
+  using std::floor;
+  const T two_pi = T(2.0 * kPi);
+  return angle_rad - two_pi * floor((angle_rad + T(kPi)) / two_pi);
+}
+
+inline double DegToRad(double deg) { return deg * kPi / 180.0; }
+inline double RadToDeg(double rad) { return rad * 180.0 / kPi; }
+
+template <typename T>
+T Clamp(T value, T lo, T hi) {
+  return value < lo ? lo : (value > hi ? hi : value);
+}
+
+}  // namespace common
+}  // namespace fusemap
+
+#endif  // FUSEMAP_COMMON_MATH_H_

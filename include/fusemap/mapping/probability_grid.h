@@ -1,0 +1,51 @@
+#ifndef FUSEMAP_MAPPING_PROBABILITY_GRID_H_
+#define FUSEMAP_MAPPING_PROBABILITY_GRID_H_
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <vector>
+
+#include "fusemap/mapping/map_limits.h"
+#include "fusemap/mapping/probability_values.h"
+
+namespace fusemap {
+namespace mapping {
+
+// Occupancy grid storing per-cell hit probability as 15-bit values (see probability_values.h).
+// It grows (keeping cell contents at their world positions) when asked to cover a point outside.
+// Invariant: between updates no cell carries kUpdateMarker.
+class ProbabilityGrid {
+ public:
+  explicit ProbabilityGrid(const MapLimits& limits);
+
+  const MapLimits& limits() const { return limits_; }
+
+  // kMinProbability for unknown cells and for cells outside the grid.
+  float GetProbability(const Eigen::Array2i& cell) const;
+  bool IsKnown(const Eigen::Array2i& cell) const;
+  uint16_t GetValue(const Eigen::Array2i& cell) const;
+  // Sets a cell directly (tests, map loading). The cell must lie inside the grid.
+  void SetProbability(const Eigen::Array2i& cell, float probability);
+
+  // Applies an odds look-up table to a cell once per update; returns false if the cell was
+  // already updated since the last FinishUpdate(). The cell must lie inside the grid.
+  bool ApplyLookupTable(const Eigen::Array2i& cell, const std::vector<uint16_t>& table);
+  // Clears the update markers set since the last call.
+  void FinishUpdate();
+
+  // Enlarges the grid (by doubling) until `point_m` falls inside, with a margin of a few cells.
+  void GrowLimits(const Eigen::Vector2f& point_m);
+
+  // Bounding box (in cells) of the known cells; false if nothing is known.
+  bool ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const;
+
+ private:
+  MapLimits limits_;
+  std::vector<uint16_t> cells_;
+  std::vector<int> update_indices_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_PROBABILITY_GRID_H_

@@ -1,0 +1,105 @@
+#include "fusemap/mapping/probability_grid.h"
+
+#include <cassert>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+constexpr int kGrowMarginCells = 4;
+}  // namespace
+
+ProbabilityGrid::ProbabilityGrid(const MapLimits& limits)
+    : limits_(limits),
+      cells_(static_cast<size_t>(limits.num_x_cells) * limits.num_y_cells, kUnknownValue) {
+  assert(limits.num_x_cells >= 0 && limits.num_y_cells >= 0 && limits.resolution_m > 0);
+}
+
+float ProbabilityGrid::GetProbability(const Eigen::Array2i& cell) const {
+  if (!limits_.Contains(cell)) return kMinProbability;
+  return ValueToProbability(cells_[limits_.FlatIndex(cell)]);
+}
+
+uint16_t ProbabilityGrid::GetValue(const Eigen::Array2i& cell) const {
+  if (!limits_.Contains(cell)) return kUnknownValue;
+  return cells_[limits_.FlatIndex(cell)] & static_cast<uint16_t>(~kUpdateMarker);
+}
+
+bool ProbabilityGrid::IsKnown(const Eigen::Array2i& cell) const {
+  return GetValue(cell) != kUnknownValue;
+}
+
+void ProbabilityGrid::SetProbability(const Eigen::Array2i& cell, float probability) {
+  assert(limits_.Contains(cell));
+  cells_[limits_.FlatIndex(cell)] = ProbabilityToValue(probability);
+}
+
+bool ProbabilityGrid::ApplyLookupTable(const Eigen::Array2i& cell,
+                                       const std::vector<uint16_t>& table) {
+  assert(limits_.Contains(cell));
+  const int index = limits_.FlatIndex(cell);
+  uint16_t& value = cells_[index];
+  if (value & kUpdateMarker) return false;
+  update_indices_.push_back(index);
+  value = table[value];
+  assert(value & kUpdateMarker);
+  return true;
+}
+
+void ProbabilityGrid::FinishUpdate() {
+  for (int index : update_indices_) cells_[index] &= static_cast<uint16_t>(~kUpdateMarker);
+  update_indices_.clear();
+}
+
+void ProbabilityGrid::GrowLimits(const Eigen::Vector2f& point_m) {
+  assert(update_indices_.empty() && "grow between updates only");
+  const auto inside = [&](const MapLimits& l) {
+    const Eigen::Array2i c = l.GetCellIndex(point_m);
+    return c.x() >= kGrowMarginCells && c.y() >= kGrowMarginCells &&
+           c.x() < l.num_x_cells - kGrowMarginCells && c.y() < l.num_y_cells - kGrowMarginCells;
+  };
+  if (inside(limits_)) return;
+  MapLimits grown = limits_;
+  while (!inside(grown)) {
+    // Double about the centre so growth is symmetric and amortised O(1) per cell.
+    const int add_x = std::max(grown.num_x_cells, 2 * kGrowMarginCells);
+    const int add_y = std::max(grown.num_y_cells, 2 * kGrowMarginCells);
+    grown.origin_m -= grown.resolution_m * Eigen::Vector2d(add_x / 2, add_y / 2);
+    grown.num_x_cells += add_x;
+    grown.num_y_cells += add_y;
+  }
+  const Eigen::Array2i offset(
+      static_cast<int>(std::lround((limits_.origin_m.x() - grown.origin_m.x()) / grown.resolution_m)),
+      static_cast<int>(std::lround((limits_.origin_m.y() - grown.origin_m.y()) / grown.resolution_m)));
+  std::vector<uint16_t> cells(static_cast<size_t>(grown.num_x_cells) * grown.num_y_cells,
+                              kUnknownValue);
+  for (int y = 0; y < limits_.num_y_cells; ++y) {
+    for (int x = 0; x < limits_.num_x_cells; ++x) {
+      cells[grown.FlatIndex(Eigen::Array2i(x, y) + offset)] =
+          cells_[limits_.FlatIndex(Eigen::Array2i(x, y))];
+    }
+  }
+  limits_ = grown;
+  cells_.swap(cells);
+}
+
+bool ProbabilityGrid::ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const {
+  bool any = false;
+  for (int y = 0; y < limits_.num_y_cells; ++y) {
+    for (int x = 0; x < limits_.num_x_cells; ++x) {
+      if (cells_[limits_.FlatIndex(Eigen::Array2i(x, y))] == kUnknownValue) continue;
+      const Eigen::Array2i c(x, y);
+      if (!any) {
+        *min_cell = c;
+        *max_cell = c;
+        any = true;
+      } else {
+        *min_cell = min_cell->min(c);
+        *max_cell = max_cell->max(c);
+      }
+    }
+  }
+  return any;
+}
+
+}  // namespace mapping
+}  // namespace fusemap
