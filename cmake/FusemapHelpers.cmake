@@ -4,6 +4,13 @@
 function(fusemap_module name)
   cmake_parse_arguments(ARG "" "" "DEPS" ${ARGN})
   file(GLOB srcs CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  if(NOT srcs)
+    # Header-only so far: still a target, so links and dependency order stay the same.
+    add_library(fusemap_${name} INTERFACE)
+    target_include_directories(fusemap_${name} INTERFACE ${PROJECT_SOURCE_DIR}/include)
+    target_link_libraries(fusemap_${name} INTERFACE ${ARG_DEPS})
+    return()
+  endif()
   add_library(fusemap_${name} STATIC ${srcs})
   target_include_directories(fusemap_${name} PUBLIC ${PROJECT_SOURCE_DIR}/include)
   target_link_libraries(fusemap_${name} PUBLIC ${ARG_DEPS})
