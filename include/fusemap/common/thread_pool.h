@@ -1,0 +1,58 @@
+#ifndef FUSEMAP_COMMON_THREAD_POOL_H_
+#define FUSEMAP_COMMON_THREAD_POOL_H_
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace fusemap {
+namespace common {
+
+// Where algorithm libraries hand off work they can do in parallel (loop-closure searches,
+// background optimisation). Libraries only see this interface; the program that owns the
+// threads decides how many there are. InlineExecutor runs work at once on the caller's
+// thread, which keeps runs bit-for-bit reproducible.
+class Executor {
+ public:
+  virtual ~Executor() = default;
+  virtual void Schedule(std::function<void()> task) = 0;
+  // Blocks until every task scheduled so far has finished.
+  virtual void WaitIdle() = 0;
+};
+
+class InlineExecutor : public Executor {
+ public:
+  void Schedule(std::function<void()> task) override { task(); }
+  void WaitIdle() override {}
+};
+
+// Fixed-size pool; tasks run in FIFO order on whichever worker is free.
+class ThreadPool : public Executor {
+ public:
+  explicit ThreadPool(int num_threads);
+  ~ThreadPool() override;
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
+
+  void Schedule(std::function<void()> task) override;
+  void WaitIdle() override;
+
+ private:
+  void Work();
+
+  std::mutex mutex_;
+  std::condition_variable work_available_;
+  std::condition_variable idle_;
+  std::deque<std::function<void()>> tasks_;  // guarded by mutex_
+  int running_ = 0;                           // guarded by mutex_
+  bool stopping_ = false;                     // guarded by mutex_
+  std::vector<std::thread> workers_;
+};
+
+}  // namespace common
+}  // namespace fusemap
+
+#endif  // FUSEMAP_COMMON_THREAD_POOL_H_
