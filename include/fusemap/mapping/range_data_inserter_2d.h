@@ -1,0 +1,48 @@
+#ifndef FUSEMAP_MAPPING_RANGE_DATA_INSERTER_2D_H_
+#define FUSEMAP_MAPPING_RANGE_DATA_INSERTER_2D_H_
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/mapping/probability_grid.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct ProbabilityGridRangeDataInserterOptions {
+  float hit_probability = 0.55f;
+  float miss_probability = 0.49f;
+  bool insert_free_space = true;
+
+  bool IsValid(std::string* error) const;
+};
+
+ProbabilityGridRangeDataInserterOptions ParseProbabilityGridRangeDataInserterOptions(
+    common::ConfigReader& reader);
+
+// Writes one scan into a probability grid with the odds update of Hess et al. 2016, eq. 2.
+// Every touched cell is updated at most once per Insert(): hits first, then the free cells
+// along each ray, so a cell hit by this scan is never also cleared by it.
+class RangeDataInserter2D {
+ public:
+  explicit RangeDataInserter2D(const ProbabilityGridRangeDataInserterOptions& options);
+
+  // `range_data` must be in the grid's frame. Grows the grid to cover the origin and every
+  // point, then applies the hit table to return cells and (if insert_free_space) the miss
+  // table to cells crossed by rays to returns (excluding the return cell) and to misses
+  // (including the end cell).
+  void Insert(const sensor::RangeData& range_data, ProbabilityGrid* grid) const;
+
+ private:
+  ProbabilityGridRangeDataInserterOptions options_;
+  std::vector<uint16_t> hit_table_;
+  std::vector<uint16_t> miss_table_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_RANGE_DATA_INSERTER_2D_H_

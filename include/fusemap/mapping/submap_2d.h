@@ -1,0 +1,91 @@
+#ifndef FUSEMAP_MAPPING_SUBMAP_2D_H_
+#define FUSEMAP_MAPPING_SUBMAP_2D_H_
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/probability_grid.h"
+#include "fusemap/mapping/range_data_inserter_2d.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct SubmapsOptions {
+  // Range data per submap before the next one starts; each submap ends up with twice this.
+  int num_range_data = 90;
+  double resolution_m = 0.05;
+  ProbabilityGridRangeDataInserterOptions range_data_inserter;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Reads num_range_data, resolution_m and the child mapping `range_data_inserter`.
+SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader);
+
+// A local occupancy map built from consecutive range data. As in Cartographer, the grid is
+// expressed in the local SLAM frame (cell coordinates are local coordinates) and
+// T_local_submap is a pure translation to the origin at creation. Once finished, a submap is
+// never mutated again, so it may be shared read-only with other threads.
+class Submap2D {
+ public:
+  // Starts an empty grid of 100 x 100 cells centred on `origin_in_local_m`.
+  Submap2D(const Eigen::Vector2f& origin_in_local_m, double resolution_m);
+
+  Submap2D(const Submap2D&) = delete;
+  Submap2D& operator=(const Submap2D&) = delete;
+
+  const common::Rigid2d& T_local_submap() const { return T_local_submap_; }
+  const ProbabilityGrid& grid() const { return grid_; }
+  int num_range_data() const { return num_range_data_; }
+  bool finished() const { return finished_; }
+
+  // Must not be called once finished.
+  void InsertRangeData(const sensor::RangeData& range_data_in_local,
+                       const RangeDataInserter2D& inserter);
+  void Finish();
+
+ private:
+  common::Rigid2d T_local_submap_;
+  ProbabilityGrid grid_;
+  int num_range_data_ = 0;
+  bool finished_ = false;
+};
+
+// Cartographer's pair of active submaps: every range data goes into both; when the newer one
+// has num_range_data, the older one (then holding 2 * num_range_data) is finished, and on the
+// next insertion it is dropped and a new submap starts at that range data's origin. So each
+// finished submap overlaps its successor by half, and the front (older) submap, which is the
+// more complete, is the one to match against. Unfinished submaps handed out are still written
+// by the next InsertRangeData(): only finished ones may be read from another thread.
+class ActiveSubmaps2D {
+ public:
+  explicit ActiveSubmaps2D(const SubmapsOptions& options);
+
+  ActiveSubmaps2D(const ActiveSubmaps2D&) = delete;
+  ActiveSubmaps2D& operator=(const ActiveSubmaps2D&) = delete;
+
+  // Inserts into the active submaps and returns them, oldest first. The front one may have
+  // just been finished by this call; that is how the caller learns to hand it to global SLAM.
+  std::vector<std::shared_ptr<const Submap2D>> InsertRangeData(
+      const sensor::RangeData& range_data_in_local);
+
+  // The current active submaps, oldest first (empty before the first insertion).
+  std::vector<std::shared_ptr<const Submap2D>> submaps() const;
+
+ private:
+  void AddSubmap(const Eigen::Vector2f& origin_in_local_m);
+
+  SubmapsOptions options_;
+  RangeDataInserter2D inserter_;
+  std::vector<std::shared_ptr<Submap2D>> submaps_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_SUBMAP_2D_H_

@@ -1,0 +1,94 @@
+#include "fusemap/mapping/submap_2d.h"
+
+#include <cassert>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+constexpr int kInitialSubmapCells = 100;
+
+MapLimits InitialLimits(const Eigen::Vector2f& centre_m, double resolution_m) {
+  MapLimits limits;
+  limits.resolution_m = resolution_m;
+  limits.num_x_cells = kInitialSubmapCells;
+  limits.num_y_cells = kInitialSubmapCells;
+  limits.origin_m =
+      centre_m.cast<double>() - 0.5 * kInitialSubmapCells * resolution_m * Eigen::Vector2d::Ones();
+  return limits;
+}
+
+}  // namespace
+
+bool SubmapsOptions::IsValid(std::string* error) const {
+  if (num_range_data < 1) {
+    *error = "num_range_data must be >= 1";
+    return false;
+  }
+  if (!(resolution_m > 0.0)) {
+    *error = "resolution_m must be > 0";
+    return false;
+  }
+  return range_data_inserter.IsValid(error);
+}
+
+SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader) {
+  SubmapsOptions options;
+  reader.Get("num_range_data", &options.num_range_data);
+  reader.Get("resolution_m", &options.resolution_m);
+  if (options.num_range_data < 1) reader.AddError("num_range_data", "must be >= 1");
+  if (!(options.resolution_m > 0.0)) reader.AddError("resolution_m", "must be > 0");
+  options.range_data_inserter =
+      ParseProbabilityGridRangeDataInserterOptions(reader.Child("range_data_inserter"));
+  return options;
+}
+
+Submap2D::Submap2D(const Eigen::Vector2f& origin_in_local_m, double resolution_m)
+    : T_local_submap_(common::Rigid2d::Translation(origin_in_local_m.cast<double>())),
+      grid_(InitialLimits(origin_in_local_m, resolution_m)) {}
+
+void Submap2D::InsertRangeData(const sensor::RangeData& range_data_in_local,
+                               const RangeDataInserter2D& inserter) {
+  assert(!finished_);
+  inserter.Insert(range_data_in_local, &grid_);
+  ++num_range_data_;
+}
+
+void Submap2D::Finish() {
+  assert(!finished_);
+  finished_ = true;
+}
+
+ActiveSubmaps2D::ActiveSubmaps2D(const SubmapsOptions& options)
+    : options_(options), inserter_(options.range_data_inserter) {
+  std::string error;
+  assert(options.IsValid(&error));
+}
+
+std::vector<std::shared_ptr<const Submap2D>> ActiveSubmaps2D::InsertRangeData(
+    const sensor::RangeData& range_data_in_local) {
+  if (submaps_.empty() || submaps_.back()->num_range_data() == options_.num_range_data) {
+    AddSubmap(range_data_in_local.origin);
+  }
+  for (const auto& submap : submaps_) submap->InsertRangeData(range_data_in_local, inserter_);
+  if (submaps_.front()->num_range_data() == 2 * options_.num_range_data) {
+    submaps_.front()->Finish();
+  }
+  return submaps();
+}
+
+std::vector<std::shared_ptr<const Submap2D>> ActiveSubmaps2D::submaps() const {
+  return std::vector<std::shared_ptr<const Submap2D>>(submaps_.begin(), submaps_.end());
+}
+
+void ActiveSubmaps2D::AddSubmap(const Eigen::Vector2f& origin_in_local_m) {
+  if (submaps_.size() >= 2) {
+    // Only the finished older submap leaves; the caller saw it finished on the last call.
+    assert(submaps_.front()->finished());
+    submaps_.erase(submaps_.begin());
+  }
+  submaps_.push_back(std::make_shared<Submap2D>(origin_in_local_m, options_.resolution_m));
+}
+
+}  // namespace mapping
+}  // namespace fusemap

@@ -1,0 +1,77 @@
+#include "fusemap/mapping/probability_grid.h"
+
+#include <gtest/gtest.h>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+MapLimits SmallLimits() {
+  MapLimits limits;
+  limits.resolution_m = 0.1;
+  limits.origin_m = Eigen::Vector2d(-1.0, -1.0);
+  limits.num_x_cells = 20;
+  limits.num_y_cells = 20;
+  return limits;
+}
+
+TEST(ProbabilityGridTest, StartsUnknown) {
+  ProbabilityGrid grid(SmallLimits());
+  EXPECT_FALSE(grid.IsKnown(Eigen::Array2i(3, 4)));
+  EXPECT_FLOAT_EQ(grid.GetProbability(Eigen::Array2i(3, 4)), kMinProbability);
+  EXPECT_FLOAT_EQ(grid.GetProbability(Eigen::Array2i(-1, 400)), kMinProbability);
+  Eigen::Array2i lo, hi;
+  EXPECT_FALSE(grid.ComputeKnownBounds(&lo, &hi));
+}
+
+TEST(ProbabilityGridTest, MarkedCellIsNotUpdatedTwiceInOneScan) {
+  ProbabilityGrid grid(SmallLimits());
+  const auto hit = ComputeLookupTableToApplyOdds(Odds(0.55f));
+  const Eigen::Array2i cell(5, 5);
+  EXPECT_TRUE(grid.ApplyLookupTable(cell, hit));
+  EXPECT_FALSE(grid.ApplyLookupTable(cell, hit));
+  EXPECT_NEAR(grid.GetProbability(cell), 0.55f, 1e-4f);
+  grid.FinishUpdate();
+  EXPECT_TRUE(grid.ApplyLookupTable(cell, hit));
+  grid.FinishUpdate();
+  EXPECT_NEAR(grid.GetProbability(cell), ProbabilityFromOdds(Odds(0.55f) * Odds(0.55f)), 1e-4f);
+}
+
+TEST(ProbabilityGridTest, GrowKeepsContentsAtTheSameWorldPositions) {
+  ProbabilityGrid grid(SmallLimits());
+  const std::vector<std::pair<Eigen::Vector2f, float>> marks = {
+      {{-0.95f, -0.95f}, 0.2f}, {{0.55f, 0.25f}, 0.8f}, {{0.95f, 0.95f}, 0.7f}};
+  for (const auto& [point, p] : marks) {
+    grid.SetProbability(grid.limits().GetCellIndex(point), p);
+  }
+  grid.GrowLimits(Eigen::Vector2f(7.3f, -4.2f));
+  const MapLimits& grown = grid.limits();
+  EXPECT_GT(grown.num_x_cells, 20);
+  const Eigen::Array2i far_cell = grown.GetCellIndex(Eigen::Vector2f(7.3f, -4.2f));
+  EXPECT_TRUE(grown.Contains(far_cell));
+  EXPECT_NEAR(grown.resolution_m, 0.1, 1e-12);
+  for (const auto& [point, p] : marks) {
+    EXPECT_NEAR(grid.GetProbability(grown.GetCellIndex(point)), p, 1e-4f);
+  }
+  Eigen::Array2i lo, hi;
+  ASSERT_TRUE(grid.ComputeKnownBounds(&lo, &hi));
+  EXPECT_NEAR(grown.GetCellCenter(lo).x(), -0.95, 1e-6);
+  EXPECT_NEAR(grown.GetCellCenter(hi).y(), 0.95, 1e-6);
+  // Exactly three known cells survive.
+  int known = 0;
+  for (int y = 0; y < grown.num_y_cells; ++y) {
+    for (int x = 0; x < grown.num_x_cells; ++x) known += grid.IsKnown(Eigen::Array2i(x, y));
+  }
+  EXPECT_EQ(known, 3);
+}
+
+TEST(ProbabilityGridTest, GrowIsANoOpForInteriorPoints) {
+  ProbabilityGrid grid(SmallLimits());
+  grid.GrowLimits(Eigen::Vector2f(0.f, 0.f));
+  EXPECT_EQ(grid.limits().num_x_cells, 20);
+  EXPECT_NEAR(grid.limits().origin_m.x(), -1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace fusemap
