@@ -1,0 +1,57 @@
+#ifndef FUSEMAP_MAPPING_SCAN_MATCHING_CERES_SCAN_MATCHER_2D_H_
+#define FUSEMAP_MAPPING_SCAN_MATCHING_CERES_SCAN_MATCHER_2D_H_
+
+#include <ceres/cost_function.h>
+#include <ceres/solver.h>
+
+#include <Eigen/Core>
+#include <string>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/probability_grid.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct CeresScanMatcherOptions2D {
+  double occupied_space_weight = 1.0;
+  double translation_weight = 10.0;
+  double rotation_weight = 40.0;
+  int max_num_iterations = 20;
+  int num_threads = 1;
+
+  bool IsValid(std::string* error) const;
+};
+
+CeresScanMatcherOptions2D ParseCeresScanMatcherOptions2D(common::ConfigReader& reader);
+
+// Residual weight * (t - target_translation) over the pose block [x_m, y_m, angle_rad].
+ceres::CostFunction* CreateTranslationDeltaCostFunctor2D(double weight,
+                                                         const Eigen::Vector2d& target_translation);
+// Residual weight * (angle - target_angle_rad) over the pose block [x_m, y_m, angle_rad].
+ceres::CostFunction* CreateRotationDeltaCostFunctor2D(double weight, double target_angle_rad);
+
+// Refines a pose by aligning a point cloud with the smoothed probability grid (Hess et al.
+// 2016, Sec. IV-C), with priors keeping the translation near a target (the motion prediction)
+// and the angle near the initial estimate.
+class CeresScanMatcher2D {
+ public:
+  explicit CeresScanMatcher2D(const CeresScanMatcherOptions2D& options);
+
+  // `cloud` is in the tracking frame; poses are T_grid_tracking. The cloud must not be empty.
+  void Match(const Eigen::Vector2d& target_translation,
+             const common::Rigid2d& initial_pose_estimate, const sensor::PointCloud2d& cloud,
+             const ProbabilityGrid& grid, common::Rigid2d* pose_estimate,
+             ceres::Solver::Summary* summary) const;
+
+ private:
+  CeresScanMatcherOptions2D options_;
+  ceres::Solver::Options solver_options_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_SCAN_MATCHING_CERES_SCAN_MATCHER_2D_H_

@@ -1,0 +1,76 @@
+#ifndef FUSEMAP_MAPPING_SCAN_MATCHING_FAST_CORRELATIVE_SCAN_MATCHER_2D_H_
+#define FUSEMAP_MAPPING_SCAN_MATCHING_FAST_CORRELATIVE_SCAN_MATCHER_2D_H_
+
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/math.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/map_limits.h"
+#include "fusemap/mapping/probability_grid.h"
+#include "fusemap/mapping/scan_matching/correlative_scan_matcher_2d.h"
+#include "fusemap/mapping/scan_matching/precomputation_grid_2d.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct FastCorrelativeScanMatcherOptions2D {
+  double linear_search_window_m = 7.0;
+  double angular_search_window_rad = common::DegToRad(30.0);
+  int branch_and_bound_depth = 7;
+  // The threshold callers (the constraint builder) pass to Match for local searches.
+  double min_score = 0.55;
+
+  bool IsValid(std::string* error) const;
+};
+
+FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
+    common::ConfigReader& reader);
+
+// Loop-closure scan matcher over one finished grid (Hess et al. 2016, Sec. V): depth-first
+// branch and bound over the same candidates an exhaustive correlative search would score,
+// bounded by the precomputation grids. The result is exactly the best of those candidates
+// (scores as quantised by precomputation_grid_2d.h). Holds no reference to the grid.
+class FastCorrelativeScanMatcher2D {
+ public:
+  FastCorrelativeScanMatcher2D(const ProbabilityGrid& grid,
+                               const FastCorrelativeScanMatcherOptions2D& options);
+
+  FastCorrelativeScanMatcher2D(const FastCorrelativeScanMatcher2D&) = delete;
+  FastCorrelativeScanMatcher2D& operator=(const FastCorrelativeScanMatcher2D&) = delete;
+
+  // Searches the option windows around `initial_pose` (T_grid_tracking) for `cloud` (tracking
+  // frame). Returns true and fills *score and *pose if the best score exceeds `min_score`.
+  bool Match(const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud,
+             double min_score, double* score, common::Rigid2d* pose) const;
+
+  // Searches every translation over the grid and every angle in [-pi, pi].
+  bool MatchFullSubmap(const sensor::PointCloud2d& cloud, double min_score, double* score,
+                       common::Rigid2d* pose) const;
+
+  const PrecomputationGridStack2D& precomputation_grids() const { return grids_; }
+
+ private:
+  bool MatchWithSearchParameters(SearchParameters params, const common::Rigid2d& initial_pose,
+                                 const sensor::PointCloud2d& cloud, double min_score,
+                                 double* score, common::Rigid2d* pose) const;
+  std::vector<Candidate2D> ComputeLowestResolutionCandidates(
+      const std::vector<DiscreteScan2D>& scans, const SearchParameters& params) const;
+  void ScoreCandidates(const PrecomputationGrid2D& grid, const std::vector<DiscreteScan2D>& scans,
+                       std::vector<Candidate2D>* candidates) const;
+  Candidate2D BranchAndBound(const std::vector<DiscreteScan2D>& scans,
+                             const SearchParameters& params,
+                             const std::vector<Candidate2D>& candidates, int depth,
+                             double min_score) const;
+
+  MapLimits limits_;
+  FastCorrelativeScanMatcherOptions2D options_;
+  PrecomputationGridStack2D grids_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_SCAN_MATCHING_FAST_CORRELATIVE_SCAN_MATCHER_2D_H_

@@ -1,0 +1,47 @@
+#ifndef FUSEMAP_MAPPING_SCAN_MATCHING_REAL_TIME_CORRELATIVE_SCAN_MATCHER_2D_H_
+#define FUSEMAP_MAPPING_SCAN_MATCHING_REAL_TIME_CORRELATIVE_SCAN_MATCHER_2D_H_
+
+#include <string>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/math.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/probability_grid.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct RealTimeCorrelativeScanMatcherOptions2D {
+  double linear_search_window_m = 0.1;
+  double angular_search_window_rad = common::DegToRad(20.0);
+  double translation_delta_cost_weight = 1e-1;
+  double rotation_delta_cost_weight = 1e-1;
+
+  bool IsValid(std::string* error) const;
+};
+
+RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptions2D(
+    common::ConfigReader& reader);
+
+// Exhaustive correlative search (Olson 2009) in a small window around a pose prediction, used
+// by local SLAM to give the Ceres matcher a start inside its basin of convergence. Each
+// candidate scores the mean grid probability at its points, damped by its distance from the
+// prediction as in Cartographer.
+class RealTimeCorrelativeScanMatcher2D {
+ public:
+  explicit RealTimeCorrelativeScanMatcher2D(const RealTimeCorrelativeScanMatcherOptions2D& options);
+
+  // `cloud` is in the tracking frame; `initial_pose` and *pose are T_grid_tracking. Returns the
+  // best candidate's score (0 for an empty cloud, in which case *pose = initial_pose).
+  double Match(const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud,
+               const ProbabilityGrid& grid, common::Rigid2d* pose) const;
+
+ private:
+  RealTimeCorrelativeScanMatcherOptions2D options_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_SCAN_MATCHING_REAL_TIME_CORRELATIVE_SCAN_MATCHER_2D_H_

@@ -1,0 +1,160 @@
+#include "fusemap/mapping/scan_matching/fast_correlative_scan_matcher_2d.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cassert>
+#include <functional>
+
+namespace fusemap {
+namespace mapping {
+
+bool FastCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
+  if (!(linear_search_window_m >= 0.0)) {
+    *error = "linear_search_window_m must be >= 0";
+    return false;
+  }
+  if (!(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi)) {
+    *error = "angular_search_window_rad must be in [0, pi]";
+    return false;
+  }
+  if (branch_and_bound_depth < 1 || branch_and_bound_depth > 15) {
+    *error = "branch_and_bound_depth must be in [1, 15]";
+    return false;
+  }
+  if (!(min_score >= 0.0 && min_score <= 1.0)) {
+    *error = "min_score must be in [0, 1]";
+    return false;
+  }
+  return true;
+}
+
+FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
+    common::ConfigReader& reader) {
+  FastCorrelativeScanMatcherOptions2D options;
+  reader.Get("linear_search_window_m", &options.linear_search_window_m);
+  reader.Get("angular_search_window_rad", &options.angular_search_window_rad);
+  reader.Get("branch_and_bound_depth", &options.branch_and_bound_depth);
+  reader.Get("min_score", &options.min_score);
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError("fast_correlative_scan_matcher", error);
+  return options;
+}
+
+FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
+    const ProbabilityGrid& grid, const FastCorrelativeScanMatcherOptions2D& options)
+    : limits_(grid.limits()),
+      options_(options),
+      grids_(grid, options.branch_and_bound_depth) {
+  std::string error;
+  assert(options_.IsValid(&error));
+  (void)error;
+}
+
+bool FastCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
+                                         const sensor::PointCloud2d& cloud, double min_score,
+                                         double* score, common::Rigid2d* pose) const {
+  const SearchParameters params(options_.linear_search_window_m,
+                                options_.angular_search_window_rad, cloud, limits_.resolution_m);
+  return MatchWithSearchParameters(params, initial_pose, cloud, min_score, score, pose);
+}
+
+bool FastCorrelativeScanMatcher2D::MatchFullSubmap(const sensor::PointCloud2d& cloud,
+                                                   double min_score, double* score,
+                                                   common::Rigid2d* pose) const {
+  // A window far larger than the grid; ShrinkToFit then cuts it down to the grid.
+  const double grid_extent_m =
+      limits_.resolution_m * std::max(limits_.num_x_cells, limits_.num_y_cells);
+  const SearchParameters params(2.0 * grid_extent_m, common::kPi, cloud, limits_.resolution_m);
+  const common::Rigid2d centre = common::Rigid2d::Translation(
+      limits_.origin_m +
+      0.5 * limits_.resolution_m * Eigen::Vector2d(limits_.num_x_cells, limits_.num_y_cells));
+  return MatchWithSearchParameters(params, centre, cloud, min_score, score, pose);
+}
+
+bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
+    SearchParameters params, const common::Rigid2d& initial_pose,
+    const sensor::PointCloud2d& cloud, double min_score, double* score,
+    common::Rigid2d* pose) const {
+  assert(score != nullptr && pose != nullptr);
+  if (cloud.empty()) return false;
+  const Eigen::Matrix2f rotation =
+      Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
+  sensor::PointCloud2d rotated_cloud;
+  rotated_cloud.reserve(cloud.size());
+  for (const Eigen::Vector2f& point : cloud) rotated_cloud.push_back(rotation * point);
+  const std::vector<DiscreteScan2D> scans =
+      DiscretizeScans(limits_, GenerateRotatedScans(rotated_cloud, params),
+                      initial_pose.translation().cast<float>());
+  params.ShrinkToFit(scans, limits_);
+
+  const std::vector<Candidate2D> lowest_resolution_candidates =
+      ComputeLowestResolutionCandidates(scans, params);
+  const Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
+                                          grids_.max_depth(), min_score);
+  if (!(best.score > min_score)) return false;
+  *score = best.score;
+  *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),
+                          initial_pose.angle_rad() + best.angle_rad);
+  return true;
+}
+
+std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCandidates(
+    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params) const {
+  const int step = grids_.Get(grids_.max_depth()).width_cells();
+  std::vector<Candidate2D> candidates;
+  for (int i = 0; i < params.num_scans; ++i) {
+    const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
+    for (int x = bounds.min_x; x <= bounds.max_x; x += step) {
+      for (int y = bounds.min_y; y <= bounds.max_y; y += step) {
+        candidates.emplace_back(i, x, y, params);
+      }
+    }
+  }
+  ScoreCandidates(grids_.Get(grids_.max_depth()), scans, &candidates);
+  return candidates;
+}
+
+void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& grid,
+                                                   const std::vector<DiscreteScan2D>& scans,
+                                                   std::vector<Candidate2D>* candidates) const {
+  for (Candidate2D& candidate : *candidates) {
+    const DiscreteScan2D& scan = scans[candidate.scan_index];
+    const Eigen::Array2i offset(candidate.x_offset_cells, candidate.y_offset_cells);
+    long sum = 0;
+    for (const Eigen::Array2i& cell : scan) sum += grid.GetValue(cell + offset);
+    candidate.score = PrecomputationScore(sum, static_cast<int>(scan.size()));
+  }
+  std::sort(candidates->begin(), candidates->end(), std::greater<Candidate2D>());
+}
+
+// Depth-first branch and bound (Hess et al. 2016, Algorithm 3). A candidate at depth d covers
+// the offsets [x, x + 2^d) x [y, y + 2^d) of its scan, and its depth-d score bounds theirs
+// (eq. 14), so a subtree whose bound does not beat the best leaf found so far is skipped.
+Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
+    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
+    const std::vector<Candidate2D>& candidates, int depth, double min_score) const {
+  if (depth == 0) return candidates.front();  // sorted best first, never empty
+  Candidate2D best(0, 0, 0, params);
+  best.score = min_score;
+  const int half_width = 1 << (depth - 1);
+  for (const Candidate2D& candidate : candidates) {
+    if (candidate.score <= best.score) break;
+    const SearchParameters::LinearBounds& bounds = params.linear_bounds[candidate.scan_index];
+    std::vector<Candidate2D> children;
+    for (int dx : {0, half_width}) {
+      if (candidate.x_offset_cells + dx > bounds.max_x) break;
+      for (int dy : {0, half_width}) {
+        if (candidate.y_offset_cells + dy > bounds.max_y) break;
+        children.emplace_back(candidate.scan_index, candidate.x_offset_cells + dx,
+                              candidate.y_offset_cells + dy, params);
+      }
+    }
+    ScoreCandidates(grids_.Get(depth - 1), scans, &children);
+    const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score);
+    if (child_best.score > best.score) best = child_best;
+  }
+  return best;
+}
+
+}  // namespace mapping
+}  // namespace fusemap

@@ -1,0 +1,98 @@
+#include "fusemap/mapping/scan_matching/real_time_correlative_scan_matcher_2d.h"
+
+#include <Eigen/Geometry>
+#include <cassert>
+#include <cmath>
+#include <vector>
+
+#include "fusemap/mapping/scan_matching/correlative_scan_matcher_2d.h"
+
+namespace fusemap {
+namespace mapping {
+
+bool RealTimeCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
+  if (!(linear_search_window_m >= 0.0)) {
+    *error = "linear_search_window_m must be >= 0";
+    return false;
+  }
+  if (!(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi)) {
+    *error = "angular_search_window_rad must be in [0, pi]";
+    return false;
+  }
+  if (!(translation_delta_cost_weight >= 0.0 && rotation_delta_cost_weight >= 0.0)) {
+    *error = "translation_delta_cost_weight and rotation_delta_cost_weight must be >= 0";
+    return false;
+  }
+  return true;
+}
+
+RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptions2D(
+    common::ConfigReader& reader) {
+  RealTimeCorrelativeScanMatcherOptions2D options;
+  reader.Get("linear_search_window_m", &options.linear_search_window_m);
+  reader.Get("angular_search_window_rad", &options.angular_search_window_rad);
+  reader.Get("translation_delta_cost_weight", &options.translation_delta_cost_weight);
+  reader.Get("rotation_delta_cost_weight", &options.rotation_delta_cost_weight);
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError("real_time_correlative_scan_matcher", error);
+  return options;
+}
+
+RealTimeCorrelativeScanMatcher2D::RealTimeCorrelativeScanMatcher2D(
+    const RealTimeCorrelativeScanMatcherOptions2D& options)
+    : options_(options) {
+  std::string error;
+  assert(options_.IsValid(&error));
+  (void)error;
+}
+
+double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
+                                               const sensor::PointCloud2d& cloud,
+                                               const ProbabilityGrid& grid,
+                                               common::Rigid2d* pose) const {
+  assert(pose != nullptr);
+  *pose = initial_pose;
+  if (cloud.empty()) return 0.0;
+
+  const Eigen::Matrix2f initial_rotation =
+      Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
+  sensor::PointCloud2d rotated_cloud;
+  rotated_cloud.reserve(cloud.size());
+  for (const Eigen::Vector2f& point : cloud) rotated_cloud.push_back(initial_rotation * point);
+
+  const SearchParameters params(options_.linear_search_window_m,
+                                options_.angular_search_window_rad, rotated_cloud,
+                                grid.limits().resolution_m);
+  const std::vector<DiscreteScan2D> scans =
+      DiscretizeScans(grid.limits(), GenerateRotatedScans(rotated_cloud, params),
+                      initial_pose.translation().cast<float>());
+
+  bool have_best = false;
+  Candidate2D best(params.num_angular_perturbations, 0, 0, params);
+  for (int i = 0; i < params.num_scans; ++i) {
+    const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
+    for (int dx = bounds.min_x; dx <= bounds.max_x; ++dx) {
+      for (int dy = bounds.min_y; dy <= bounds.max_y; ++dy) {
+        Candidate2D candidate(i, dx, dy, params);
+        const Eigen::Array2i offset(dx, dy);
+        double sum = 0.0;
+        for (const Eigen::Array2i& cell : scans[i]) sum += grid.GetProbability(cell + offset);
+        // Cartographer's prior on the distance from the prediction.
+        const double penalty =
+            std::hypot(candidate.x_m, candidate.y_m) * options_.translation_delta_cost_weight +
+            std::abs(candidate.angle_rad) * options_.rotation_delta_cost_weight;
+        candidate.score = sum / static_cast<double>(scans[i].size()) * std::exp(-penalty * penalty);
+        if (!have_best || candidate > best) {
+          best = candidate;
+          have_best = true;
+        }
+      }
+    }
+  }
+  *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),
+                          initial_pose.angle_rad() + best.angle_rad);
+  return best.score;
+}
+
+}  // namespace mapping
+}  // namespace fusemap

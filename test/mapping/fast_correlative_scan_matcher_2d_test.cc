@@ -1,0 +1,319 @@
+#include "fusemap/mapping/scan_matching/fast_correlative_scan_matcher_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <random>
+#include <vector>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+struct BruteForceResult {
+  long best_sum = -1;
+  std::vector<common::Rigid2d> best_poses;  // every candidate reaching best_sum
+};
+
+// Scores every candidate the matcher's search would contain (same angles, same integer cell
+// offsets, same quantised values), with no pyramid.
+BruteForceResult BruteForce(const ProbabilityGrid& grid, const common::Rigid2d& initial_pose,
+                            const sensor::PointCloud2d& cloud, double linear_window_m,
+                            double angular_window_rad) {
+  SearchParameters params(linear_window_m, angular_window_rad, cloud, grid.limits().resolution_m);
+  const Eigen::Matrix2f rotation =
+      Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
+  sensor::PointCloud2d rotated;
+  for (const Eigen::Vector2f& p : cloud) rotated.push_back(rotation * p);
+  const std::vector<DiscreteScan2D> scans = DiscretizeScans(
+      grid.limits(), GenerateRotatedScans(rotated, params), initial_pose.translation().cast<float>());
+  params.ShrinkToFit(scans, grid.limits());
+  BruteForceResult result;
+  for (int i = 0; i < params.num_scans; ++i) {
+    const SearchParameters::LinearBounds& b = params.linear_bounds[i];
+    for (int x = b.min_x; x <= b.max_x; ++x) {
+      for (int y = b.min_y; y <= b.max_y; ++y) {
+        long sum = 0;
+        for (const Eigen::Array2i& cell : scans[i]) {
+          sum += ProbabilityToPrecomputationValue(grid.GetProbability(cell + Eigen::Array2i(x, y)));
+        }
+        if (sum < result.best_sum) continue;
+        if (sum > result.best_sum) result.best_poses.clear();
+        result.best_sum = sum;
+        const Candidate2D c(i, x, y, params);
+        result.best_poses.emplace_back(initial_pose.translation() + Eigen::Vector2d(c.x_m, c.y_m),
+                                       initial_pose.angle_rad() + c.angle_rad);
+      }
+    }
+  }
+  return result;
+}
+
+// White noise (bounds loose, little pruning) when `smooth` is false; otherwise a sum of random
+// bumps, where upper bounds are tight and near-ties between subtrees make pruning decide.
+ProbabilityGrid MakeRandomGrid(int num_x, int num_y, bool smooth, std::mt19937* rng) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-1.0, -0.5);
+  limits.num_x_cells = num_x;
+  limits.num_y_cells = num_y;
+  ProbabilityGrid grid(limits);
+  std::uniform_real_distribution<float> unit(0.f, 1.f);
+  std::vector<Eigen::Vector3f> bumps;  // x, y, sigma in cells
+  for (int i = 0; i < 30; ++i) bumps.emplace_back(num_x * unit(*rng), num_y * unit(*rng), 1.f + 4.f * unit(*rng));
+  for (int y = 0; y < num_y; ++y) {
+    for (int x = 0; x < num_x; ++x) {
+      float p = unit(*rng);
+      if (smooth) {
+        p = 0.f;
+        for (const Eigen::Vector3f& b : bumps) {
+          const float d2 = (Eigen::Vector2f(x, y) - b.head<2>()).squaredNorm();
+          p = std::max(p, std::exp(-d2 / (2.f * b.z() * b.z())));
+        }
+      }
+      if (p > 0.15f) grid.SetProbability(Eigen::Array2i(x, y), p);
+    }
+  }
+  return grid;
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundEqualsBruteForce) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    std::mt19937 rng(seed);
+    const ProbabilityGrid grid = MakeRandomGrid(60, 50, /*smooth=*/seed % 3 != 0, &rng);
+    std::uniform_real_distribution<double> coordinate(-0.2, 1.8);
+    std::uniform_real_distribution<double> angle(-common::kPi, common::kPi);
+    std::uniform_real_distribution<float> offset(-1.2f, 1.2f);
+    sensor::PointCloud2d cloud;
+    for (int i = 0; i < 40; ++i) cloud.emplace_back(offset(rng), offset(rng));
+    const common::Rigid2d initial(coordinate(rng), coordinate(rng) - 0.5, angle(rng));
+
+    FastCorrelativeScanMatcherOptions2D options;
+    options.linear_search_window_m = 0.6;
+    options.angular_search_window_rad = common::DegToRad(8.0);
+    // Depth 2 splits the window finely; depth 6 has top-level windows wider than the search.
+    for (int depth : {2, 4, 6}) {
+      SCOPED_TRACE(depth);
+      options.branch_and_bound_depth = depth;
+      const FastCorrelativeScanMatcher2D matcher(grid, options);
+      const BruteForceResult expected = BruteForce(grid, initial, cloud, options.linear_search_window_m,
+                                                   options.angular_search_window_rad);
+      ASSERT_FALSE(expected.best_poses.empty());
+      const double expected_score = PrecomputationScore(expected.best_sum, 40);
+      double score = 0.0;
+      common::Rigid2d pose;
+      ASSERT_TRUE(matcher.Match(initial, cloud, 0.0, &score, &pose));
+      EXPECT_NEAR(score, expected_score, 1e-6);
+      const bool is_a_best_pose = std::any_of(
+          expected.best_poses.begin(), expected.best_poses.end(), [&](const common::Rigid2d& p) {
+            return (p.translation() - pose.translation()).norm() < 1e-9 &&
+                   std::abs(common::NormalizeAngle(p.angle_rad() - pose.angle_rad())) < 1e-9;
+          });
+      EXPECT_TRUE(is_a_best_pose) << pose.DebugString();
+      // Just above / below the best score the matcher must fail / succeed.
+      EXPECT_FALSE(matcher.Match(initial, cloud, expected_score, &score, &pose));
+      EXPECT_TRUE(matcher.Match(initial, cloud, expected_score - 1e-6, &score, &pose));
+    }
+  }
+}
+
+// A decoy copy B of the scan (cells at 0.79) whose coarse windows also hold one 0.9 cell per
+// point, each at a different place, so B's upper bounds beat the true copy A and B's subtree is
+// searched first. A equals B except for one cell one quantisation step higher, so A's bound
+// exceeds B's best leaf by the smallest possible score difference: pruning with any slack
+// would lose the optimum.
+TEST(FastCorrelativeScanMatcher2DTest, SlightlyBetterLeafInLaterSubtreeIsFound) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.num_x_cells = 160;
+  limits.num_y_cells = 120;
+  ProbabilityGrid grid(limits);
+  sensor::PointCloud2d cloud;
+  std::vector<Eigen::Array2i> cells;
+  for (int i = 0; i < 4; ++i) {
+    for (int j = 0; j < 4; ++j) {
+      cells.emplace_back(50 + 10 * i, 40 + 10 * j);
+      cloud.push_back(limits.GetCellCenter(cells.back()).cast<float>());
+    }
+  }
+  const Eigen::Array2i offset_a(16, 8);
+  const Eigen::Array2i offset_b(-16, 0);  // both multiples of the depth-3 width 8
+  for (size_t k = 0; k < cells.size(); ++k) {
+    grid.SetProbability(cells[k] + offset_a, k == 0 ? 0.7934f : 0.79f);
+    grid.SetProbability(cells[k] + offset_b, 0.79f);
+    const Eigen::Array2i distinct_in_window(k % 8, 4 * (k / 8) + 1 + k % 3);
+    grid.SetProbability(cells[k] + offset_b + distinct_in_window, 0.9f);
+  }
+  FastCorrelativeScanMatcherOptions2D options;
+  options.linear_search_window_m = 2.0;
+  options.angular_search_window_rad = 0.0;
+  options.branch_and_bound_depth = 3;
+  const FastCorrelativeScanMatcher2D matcher(grid, options);
+  double score = 0.0;
+  common::Rigid2d pose;
+  ASSERT_TRUE(matcher.Match(common::Rigid2d::Identity(), cloud, 0.5, &score, &pose));
+  ASSERT_EQ(ProbabilityToPrecomputationValue(0.79f) + 1, ProbabilityToPrecomputationValue(0.7934f));
+  EXPECT_NEAR(score, PrecomputationScore(16 * ProbabilityToPrecomputationValue(0.79f) + 1, 16), 1e-12);
+  EXPECT_NEAR(pose.x(), 0.8, 1e-9);
+  EXPECT_NEAR(pose.y(), 0.4, 1e-9);
+  EXPECT_EQ(pose.angle_rad(), 0.0);
+  const BruteForceResult expected = BruteForce(grid, common::Rigid2d::Identity(), cloud, 2.0, 0.0);
+  EXPECT_NEAR(score, PrecomputationScore(expected.best_sum, 16), 1e-12);
+}
+
+struct Segment {
+  Eigen::Vector2d a;
+  Eigen::Vector2d b;
+};
+
+// Outer walls of a 20 m x 20 m hall plus random walls and pillars: unique enough to localise.
+std::vector<Segment> MakeStructuredWorld(unsigned seed) {
+  std::vector<Segment> segments = {{{0.5, 0.5}, {19.5, 0.5}}, {{19.5, 0.5}, {19.5, 19.5}},
+                                   {{19.5, 19.5}, {0.5, 19.5}}, {{0.5, 19.5}, {0.5, 0.5}}};
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> position(1.5, 18.5);
+  std::uniform_real_distribution<double> length(0.5, 3.0);
+  std::uniform_real_distribution<double> direction(0.0, common::kPi);
+  for (int i = 0; i < 25; ++i) {
+    const Eigen::Vector2d a(position(rng), position(rng));
+    const double l = length(rng);
+    const double t = direction(rng);
+    segments.push_back({a, a + l * Eigen::Vector2d(std::cos(t), std::sin(t))});
+  }
+  return segments;
+}
+
+double DistanceToSegment(const Eigen::Vector2d& p, const Segment& s) {
+  const Eigen::Vector2d ab = s.b - s.a;
+  const double t = std::clamp((p - s.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
+  return (s.a + t * ab - p).norm();
+}
+
+ProbabilityGrid DrawWorld(const std::vector<Segment>& segments) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.num_x_cells = 400;
+  limits.num_y_cells = 400;
+  ProbabilityGrid grid(limits);
+  for (int y = 0; y < limits.num_y_cells; ++y) {
+    for (int x = 0; x < limits.num_x_cells; ++x) {
+      const Eigen::Array2i cell(x, y);
+      double d = std::numeric_limits<double>::max();
+      for (const Segment& s : segments) d = std::min(d, DistanceToSegment(limits.GetCellCenter(cell), s));
+      if (d < 0.3) grid.SetProbability(cell, static_cast<float>(0.1 + 0.8 * std::exp(-d * d / (2 * 0.05 * 0.05))));
+    }
+  }
+  return grid;
+}
+
+sensor::PointCloud2d CastScan(const std::vector<Segment>& segments, const common::Rigid2d& T_grid_tracking,
+                              int num_beams, double range_max_m) {
+  sensor::PointCloud2d cloud;
+  for (int i = 0; i < num_beams; ++i) {
+    const double beam_rad = 2.0 * common::kPi * i / num_beams;
+    const Eigen::Vector2d dir = T_grid_tracking.rotation() * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad));
+    const Eigen::Vector2d o = T_grid_tracking.translation();
+    double best_m = range_max_m;
+    for (const Segment& s : segments) {
+      const Eigen::Vector2d e = s.b - s.a;
+      const double denom = dir.x() * e.y() - dir.y() * e.x();
+      if (std::abs(denom) < 1e-12) continue;
+      const Eigen::Vector2d w = s.a - o;
+      const double range_m = (w.x() * e.y() - w.y() * e.x()) / denom;
+      const double u = (w.x() * dir.y() - w.y() * dir.x()) / denom;
+      if (range_m > 0.0 && u >= 0.0 && u <= 1.0) best_m = std::min(best_m, range_m);
+    }
+    if (best_m < range_max_m) {
+      cloud.push_back((best_m * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad))).cast<float>());
+    }
+  }
+  return cloud;
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, FindsScanDisplacedByTwoMetresAndTwentyDegrees) {
+  const std::vector<Segment> world = MakeStructuredWorld(7);
+  const ProbabilityGrid grid = DrawWorld(world);
+  const FastCorrelativeScanMatcherOptions2D options;  // 7 m, 30 deg, depth 7
+  const FastCorrelativeScanMatcher2D matcher(grid, options);
+  for (const common::Rigid2d& truth : {common::Rigid2d(6.0, 7.0, 0.4), common::Rigid2d(13.2, 11.1, -2.5)}) {
+    SCOPED_TRACE(truth.DebugString());
+    const sensor::PointCloud2d cloud = CastScan(world, truth, 180, 12.0);
+    ASSERT_GT(cloud.size(), 150u);
+    const common::Rigid2d initial(truth.x() + 1.2, truth.y() - 1.6, truth.angle_rad() + common::DegToRad(20.0));
+    double score = 0.0;
+    common::Rigid2d pose;
+    const auto start = std::chrono::steady_clock::now();
+    ASSERT_TRUE(matcher.Match(initial, cloud, options.min_score, &score, &pose));
+    const double elapsed_ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("local branch-and-bound match: %.1f ms, score %.3f\n", elapsed_ms, score);
+    // One cell plus the lattice offset of the start; half an angular step (< 0.3 deg here).
+    EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.05);
+    EXPECT_LT(std::abs(common::NormalizeAngle(pose.angle_rad() - truth.angle_rad())), common::DegToRad(0.5));
+    EXPECT_GT(score, 0.7);
+  }
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, FullSubmapSearchFindsUnknownPose) {
+  const std::vector<Segment> world = MakeStructuredWorld(11);
+  const ProbabilityGrid grid = DrawWorld(world);
+  const FastCorrelativeScanMatcher2D matcher(grid, FastCorrelativeScanMatcherOptions2D{});
+  const common::Rigid2d truth(12.3, 5.4, 2.9);
+  const sensor::PointCloud2d cloud = CastScan(world, truth, 180, 12.0);
+  double score = 0.0;
+  common::Rigid2d pose;
+  const auto start = std::chrono::steady_clock::now();
+  ASSERT_TRUE(matcher.MatchFullSubmap(cloud, 0.6, &score, &pose));
+  std::printf("full-submap branch-and-bound match: %.1f ms, score %.3f\n",
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count(),
+              score);
+  EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.05);
+  EXPECT_LT(std::abs(common::NormalizeAngle(pose.angle_rad() - truth.angle_rad())), common::DegToRad(0.5));
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, RejectsScanOfAnotherWorld) {
+  const ProbabilityGrid grid = DrawWorld(MakeStructuredWorld(7));
+  const FastCorrelativeScanMatcherOptions2D options;
+  const FastCorrelativeScanMatcher2D matcher(grid, options);
+  const std::vector<Segment> other = MakeStructuredWorld(99);
+  const common::Rigid2d truth(8.0, 9.0, 1.0);
+  double score = 0.0;
+  common::Rigid2d pose;
+  EXPECT_FALSE(matcher.Match(truth, CastScan(other, truth, 180, 12.0), 0.7, &score, &pose));
+  EXPECT_FALSE(matcher.Match(truth, {}, 0.0, &score, &pose));
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, OptionsValidation) {
+  std::string error;
+  FastCorrelativeScanMatcherOptions2D options;
+  EXPECT_TRUE(options.IsValid(&error));
+  options.branch_and_bound_depth = 0;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_FALSE(error.empty());
+}
+
+TEST(FastCorrelativeScanMatcher2DTest, ParsesOptionsAndRejectsOutOfRange) {
+  std::string error;
+  auto reader = common::ConfigReader::FromString("{linear_search_window_m: 5.0, angular_search_window_rad: 0.5, branch_and_bound_depth: 6, min_score: 0.6}", "test", &error);
+  ASSERT_NE(reader, nullptr) << error;
+  const auto options = ParseFastCorrelativeScanMatcherOptions2D(*reader);
+  EXPECT_TRUE(reader->Finish(&error)) << error;
+  EXPECT_EQ(options.linear_search_window_m, 5.0);
+  EXPECT_EQ(options.angular_search_window_rad, 0.5);
+  EXPECT_EQ(options.branch_and_bound_depth, 6);
+  EXPECT_EQ(options.min_score, 0.6);
+  auto bad = common::ConfigReader::FromString("{branch_and_bound_depth: 0}", "bad.yaml", &error);
+  ASSERT_NE(bad, nullptr) << error;
+  ParseFastCorrelativeScanMatcherOptions2D(*bad);
+  EXPECT_FALSE(bad->Finish(&error));
+  EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace fusemap

@@ -1,0 +1,87 @@
+#include "fusemap/mapping/scan_matching/precomputation_grid_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+ProbabilityGrid MakeRandomGrid(int num_x, int num_y, unsigned seed) {
+  MapLimits limits;
+  limits.num_x_cells = num_x;
+  limits.num_y_cells = num_y;
+  ProbabilityGrid grid(limits);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> probability(0.f, 1.f);
+  for (int y = 0; y < num_y; ++y) {
+    for (int x = 0; x < num_x; ++x) {
+      const float p = probability(rng);
+      if (p < 0.2f) continue;  // leave some cells unknown
+      grid.SetProbability(Eigen::Array2i(x, y), p);
+    }
+  }
+  return grid;
+}
+
+int NaiveWindowMax(const ProbabilityGrid& grid, const Eigen::Array2i& cell, int width) {
+  int value = 0;
+  for (int dy = 0; dy < width; ++dy) {
+    for (int dx = 0; dx < width; ++dx) {
+      value = std::max<int>(value, ProbabilityToPrecomputationValue(
+                                       grid.GetProbability(cell + Eigen::Array2i(dx, dy))));
+    }
+  }
+  return value;
+}
+
+TEST(PrecomputationGrid2DTest, QuantisationEndsAndScore) {
+  EXPECT_EQ(ProbabilityToPrecomputationValue(kMinProbability), 0);
+  EXPECT_EQ(ProbabilityToPrecomputationValue(0.f), 0);
+  EXPECT_EQ(ProbabilityToPrecomputationValue(kMaxProbability), 255);
+  EXPECT_EQ(ProbabilityToPrecomputationValue(0.3f), 64);  // 63.75 rounds up
+  EXPECT_NEAR(PrecomputationScore(0, 10), kMinProbability, 1e-6);
+  EXPECT_NEAR(PrecomputationScore(2550, 10), kMaxProbability, 1e-6);
+  EXPECT_LT(PrecomputationScore(1000, 10), PrecomputationScore(1001, 10));
+}
+
+TEST(PrecomputationGrid2DTest, EveryDepthEqualsNaiveWindowMax) {
+  for (unsigned seed : {1u, 2u, 3u}) {
+    const ProbabilityGrid grid = MakeRandomGrid(37 + seed, 23, seed);
+    const PrecomputationGridStack2D stack(grid, 5);
+    ASSERT_EQ(stack.max_depth(), 5);
+    for (int depth = 0; depth <= stack.max_depth(); ++depth) {
+      const PrecomputationGrid2D& level = stack.Get(depth);
+      const int width = 1 << depth;
+      ASSERT_EQ(level.width_cells(), width);
+      // Reach a little beyond the stored area on every side, where the value must be 0.
+      for (int y = -width - 2; y < grid.limits().num_y_cells + 2; ++y) {
+        for (int x = -width - 2; x < grid.limits().num_x_cells + 2; ++x) {
+          const Eigen::Array2i cell(x, y);
+          ASSERT_EQ(level.GetValue(cell), NaiveWindowMax(grid, cell, width))
+              << "seed " << seed << " depth " << depth << " cell " << x << "," << y;
+        }
+      }
+    }
+  }
+}
+
+TEST(PrecomputationGrid2DTest, SingleOccupiedCellSpreadsBackwards) {
+  MapLimits limits;
+  limits.num_x_cells = 8;
+  limits.num_y_cells = 8;
+  ProbabilityGrid grid(limits);
+  grid.SetProbability(Eigen::Array2i(5, 2), kMaxProbability);
+  const PrecomputationGridStack2D stack(grid, 2);
+  // Width 4: windows starting at x in [2, 5] and y in [-1, 2] contain (5, 2).
+  EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(2, -1)), 255);
+  EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(5, 2)), 255);
+  EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(1, 2)), 0);
+  EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(5, 3)), 0);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace fusemap
