@@ -1,0 +1,39 @@
+#ifndef FUSEMAP_POSE_GRAPH_POSE_GRAPH_TYPES_H_
+#define FUSEMAP_POSE_GRAPH_POSE_GRAPH_TYPES_H_
+
+#include "fusemap/common/rigid_transform.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+// The graph model of Cartographer-style global SLAM (Hess et al. 2016 Sec. IV): submaps and
+// nodes (scans inserted by local SLAM) with poses in the map frame, tied by relative poses.
+// Submaps and nodes are numbered 0, 1, ... in the order they are added.
+
+// Node `node` observed in submap `submap`: the pose of the node in the submap frame, from local
+// SLAM (kIntraSubmap) or from a scan match against a finished submap (kInterSubmap, a loop
+// closure). Residual = weights .* (T_submap_node ⊖ T_map_submap^-1 * T_map_node).
+struct Constraint2D {
+  enum Tag { kIntraSubmap, kInterSubmap };
+
+  int submap = 0;
+  int node = 0;
+  common::Rigid2d T_submap_node;
+  double translation_weight = 1.0;
+  double rotation_weight = 1.0;
+  Tag tag = kIntraSubmap;
+};
+
+// Odometry or local-SLAM relative motion between two nodes (usually consecutive ones).
+struct NodeToNodeConstraint2D {
+  int from = 0;
+  int to = 0;
+  common::Rigid2d T_from_to;
+  double translation_weight = 1.0;
+  double rotation_weight = 1.0;
+};
+
+}  // namespace pose_graph
+}  // namespace fusemap
+
+#endif  // FUSEMAP_POSE_GRAPH_POSE_GRAPH_TYPES_H_
