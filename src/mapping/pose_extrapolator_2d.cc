@@ -8,6 +8,8 @@ namespace {
 // Odometry older than this before the last pose is still kept so that the pose time itself
 // can be interpolated.
 constexpr double kOdometryHistoryMarginS = 1.0;
+// Odometry velocity is held at most this long past the last sample.
+constexpr double kMaxOdometryExtrapolationS = 0.5;
 }  // namespace
 
 PoseExtrapolator2D::PoseExtrapolator2D(double pose_queue_duration_s)
@@ -67,8 +69,21 @@ void PoseExtrapolator2D::TrimQueues() {
 bool PoseExtrapolator2D::InterpolateOdometry(double stamp_s, common::Rigid2d* T_odom_base) const {
   if (odometry_.empty() || stamp_s < odometry_.front().stamp_s) return false;
   if (stamp_s >= odometry_.back().stamp_s) {
-    // A scan a few ms after the last odometry sample is common: hold the last sample briefly.
-    if (stamp_s - odometry_.back().stamp_s > 0.1) return false;
+    // A scan usually arrives before the odometry sample that follows it. Over a short gap
+    // the last odometry velocity is extrapolated; a longer gap means odometry stopped
+    // reporting (logs that record it only while moving), so the robot is taken to be still.
+    const double gap_s = stamp_s - odometry_.back().stamp_s;
+    if (gap_s <= kMaxOdometryExtrapolationS && odometry_.size() >= 2) {
+      const sensor::OdometryData& a = odometry_[odometry_.size() - 2];
+      const sensor::OdometryData& b = odometry_.back();
+      const double span_s = b.stamp_s - a.stamp_s;
+      if (span_s > 1e-3 && span_s <= kMaxOdometryExtrapolationS) {
+        const common::Rigid2d delta = a.pose.inverse() * b.pose;
+        const double f = gap_s / span_s;
+        *T_odom_base = b.pose * common::Rigid2d(f * delta.translation(), f * delta.angle_rad());
+        return true;
+      }
+    }
     *T_odom_base = odometry_.back().pose;
     return true;
   }

@@ -56,6 +56,17 @@ TEST(PoseExtrapolator2DTest, RejectsOutOfOrderOdometry) {
   EXPECT_FALSE(extrapolator.InterpolateOdometry(0.5, &pose));
 }
 
+TEST(PoseExtrapolator2DTest, StaleOdometryHoldsTheRobotStillInsteadOfGuessingVelocity) {
+  PoseExtrapolator2D extrapolator;
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(0.0, 0.0, 0.0, 0.0)));
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(0.2, 0.2, 0.0, 0.0)));
+  extrapolator.AddPose(0.2, Rigid2d(1.0, 0.0, 0.0));
+  // 0.1 s after the last sample: the 1 m/s odometry velocity is extrapolated.
+  EXPECT_NEAR(extrapolator.ExtrapolatePose(0.3).x(), 1.1, 1e-9);
+  // 3 s after it: odometry stopped reporting, so no motion is assumed.
+  EXPECT_NEAR(extrapolator.ExtrapolatePose(3.2).x(), 1.0, 1e-9);
+}
+
 TEST(PoseExtrapolator2DTest, PastTimesReturnTheLastPose) {
   PoseExtrapolator2D extrapolator;
   extrapolator.AddPose(2.0, Rigid2d(1.0, 2.0, 0.3));

@@ -29,7 +29,8 @@ class PoseExtrapolator2D {
   // Requires HasPose(). Times before the last pose return that pose.
   common::Rigid2d ExtrapolatePose(double stamp_s) const;
 
-  // Odometry pose interpolated at `stamp_s`; false if odometry does not cover that time.
+  // Odometry pose interpolated at `stamp_s`; past the last sample, extrapolated for up to
+  // 0.5 s and then held. False without odometry or before the oldest kept sample.
   bool InterpolateOdometry(double stamp_s, common::Rigid2d* T_odom_base) const;
 
  private:

@@ -1,0 +1,112 @@
+#ifndef FUSEMAP_MAPPING_LOCAL_TRAJECTORY_BUILDER_2D_H_
+#define FUSEMAP_MAPPING_LOCAL_TRAJECTORY_BUILDER_2D_H_
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/motion_filter.h"
+#include "fusemap/mapping/pose_extrapolator_2d.h"
+#include "fusemap/mapping/scan_matching/ceres_scan_matcher_2d.h"
+#include "fusemap/mapping/scan_matching/real_time_correlative_scan_matcher_2d.h"
+#include "fusemap/mapping/submap_2d.h"
+#include "fusemap/sensor/range_data_builder.h"
+#include "fusemap/sensor/sensor_types.h"
+#include "fusemap/sensor/voxel_filter.h"
+
+namespace fusemap {
+namespace mapping {
+
+struct LocalTrajectoryBuilderOptions2D {
+  // Pose of the laser on the robot base (the tracking frame).
+  common::Rigid2d T_tracking_laser;
+  sensor::RangeGateOptions range_gate;
+  float voxel_filter_size_m = 0.025f;
+  sensor::AdaptiveVoxelFilterOptions adaptive_voxel_filter;
+  // The node's cloud for loop-closure search: fewer points, since branch-and-bound cost grows
+  // with them (Cartographer's loop_closure_adaptive_voxel_filter).
+  sensor::AdaptiveVoxelFilterOptions loop_closure_adaptive_voxel_filter;
+  // Scans with fewer returns than this are counted and skipped: too little to match against.
+  int min_num_returns = 10;
+  bool use_online_correlative_scan_matching = true;
+  RealTimeCorrelativeScanMatcherOptions2D real_time_correlative_scan_matcher;
+  CeresScanMatcherOptions2D ceres_scan_matcher;
+  MotionFilterOptions motion_filter;
+  SubmapsOptions submaps;
+  bool use_odometry = true;
+  bool use_imu = true;
+  double pose_queue_duration_s = 0.5;
+
+  LocalTrajectoryBuilderOptions2D();
+  bool IsValid(std::string* error) const;
+};
+
+// Keys: T_tracking_laser [x_m, y_m, yaw_rad], range_gate, voxel_filter_size_m,
+// adaptive_voxel_filter, loop_closure_adaptive_voxel_filter, min_num_returns, use_online_correlative_scan_matching,
+// real_time_correlative_scan_matcher, ceres_scan_matcher, motion_filter, submaps,
+// use_odometry, use_imu, pose_queue_duration_s.
+LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader);
+
+// Local SLAM (Hess et al. 2016, Sec. IV): each scan is matched against the older active
+// submap starting from the extrapolated pose, then inserted into both active submaps unless
+// the motion filter finds it too close to the last inserted one. Poses are T_local_tracking
+// in the drifting local frame; global SLAM corrects them.
+class LocalTrajectoryBuilder2D {
+ public:
+  struct InsertionResult {
+    // The data of the new trajectory node, in the tracking frame, for loop closure.
+    sensor::PointCloud2d filtered_cloud;
+    // The submaps the scan went into, oldest first (the front one may have just finished).
+    std::vector<std::shared_ptr<const Submap2D>> insertion_submaps;
+  };
+  struct MatchingResult {
+    double stamp_s = 0.0;
+    common::Rigid2d T_local_tracking;
+    double match_score = 0.0;  // of the correlative search; 0 when it did not run
+    std::optional<InsertionResult> insertion;  // empty if the motion filter dropped the scan
+  };
+  struct Stats {
+    int scans = 0;
+    int too_few_returns = 0;
+    int out_of_order = 0;
+    int inserted = 0;
+    int odometry_rejected = 0;
+    int imu_rejected = 0;
+  };
+
+  explicit LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderOptions2D& options);
+
+  LocalTrajectoryBuilder2D(const LocalTrajectoryBuilder2D&) = delete;
+  LocalTrajectoryBuilder2D& operator=(const LocalTrajectoryBuilder2D&) = delete;
+
+  void AddOdometry(const sensor::OdometryData& odometry);
+  void AddImu(const sensor::ImuData& imu);
+  // Empty if the scan was unusable (too few returns, older than the previous scan).
+  std::optional<MatchingResult> AddScan(const sensor::LaserScan& scan);
+
+  const Stats& stats() const { return stats_; }
+  std::vector<std::shared_ptr<const Submap2D>> active_submaps() const {
+    return active_submaps_.submaps();
+  }
+
+ private:
+  common::Rigid2d ScanMatch(const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
+                            double* score);
+
+  LocalTrajectoryBuilderOptions2D options_;
+  ActiveSubmaps2D active_submaps_;
+  MotionFilter motion_filter_;
+  RealTimeCorrelativeScanMatcher2D real_time_matcher_;
+  CeresScanMatcher2D ceres_matcher_;
+  PoseExtrapolator2D extrapolator_;
+  double last_scan_stamp_s_ = -1e300;
+  Stats stats_;
+};
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_LOCAL_TRAJECTORY_BUILDER_2D_H_

@@ -1,0 +1,79 @@
+#ifndef FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_
+#define FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/scan_matching/ceres_scan_matcher_2d.h"
+#include "fusemap/mapping/scan_matching/fast_correlative_scan_matcher_2d.h"
+#include "fusemap/mapping/submap_2d.h"
+#include "fusemap/pose_graph/pose_graph_types.h"
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+struct ConstraintBuilderOptions2D {
+  // Fraction of (node, submap) pairs in range that are searched (Cartographer's sampling_ratio).
+  double sampling_ratio = 0.3;
+  double max_constraint_distance_m = 15.0;
+  double loop_closure_translation_weight = 1.1e4;
+  double loop_closure_rotation_weight = 1e5;
+  mapping::FastCorrelativeScanMatcherOptions2D fast_correlative_scan_matcher;
+  mapping::CeresScanMatcherOptions2D ceres_scan_matcher;
+
+  ConstraintBuilderOptions2D();
+  bool IsValid(std::string* error) const;
+};
+
+// Keys: sampling_ratio, max_constraint_distance_m, loop_closure_translation_weight,
+// loop_closure_rotation_weight, fast_correlative_scan_matcher, ceres_scan_matcher.
+ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader);
+
+// A finished submap prepared for loop closure: its precomputation grids are built once
+// (the expensive part) and then shared read-only by every search against it.
+class LoopClosureMatcher2D {
+ public:
+  LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
+                       const ConstraintBuilderOptions2D& options);
+
+  // Searches for `cloud` (tracking frame) in the submap around the estimate T_submap_node.
+  // Returns a kInterSubmap constraint (with submap/node indices left for the caller) if the
+  // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score; `score` receives the best score found.
+  std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
+                                    const sensor::PointCloud2d& cloud, double* score) const;
+
+ private:
+  std::shared_ptr<const mapping::Submap2D> submap_;
+  const ConstraintBuilderOptions2D options_;
+  mapping::FastCorrelativeScanMatcher2D fast_matcher_;
+  mapping::CeresScanMatcher2D ceres_matcher_;
+};
+
+// Deterministic sampler: lets through the smallest number of pulses that keeps the passed
+// fraction at or above `ratio` (Cartographer's FixedRatioSampler).
+class FixedRatioSampler {
+ public:
+  explicit FixedRatioSampler(double ratio) : ratio_(ratio) {}
+  bool Pulse() {
+    ++num_pulses_;
+    if (static_cast<double>(num_samples_) / num_pulses_ < ratio_) {
+      ++num_samples_;
+      return true;
+    }
+    return false;
+  }
+
+ private:
+  double ratio_;
+  long num_pulses_ = 0;
+  long num_samples_ = 0;
+};
+
+}  // namespace pose_graph
+}  // namespace fusemap
+
+#endif  // FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_

@@ -1,0 +1,70 @@
+#ifndef FUSEMAP_POSE_GRAPH_MAP_BUILDER_2D_H_
+#define FUSEMAP_POSE_GRAPH_MAP_BUILDER_2D_H_
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/thread_pool.h"
+#include "fusemap/mapping/local_trajectory_builder_2d.h"
+#include "fusemap/pose_graph/pose_graph_2d.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+struct MapBuilderOptions2D {
+  mapping::LocalTrajectoryBuilderOptions2D local_slam;
+  PoseGraphOptions2D global_slam;
+
+  bool IsValid(std::string* error) const {
+    return local_slam.IsValid(error) && global_slam.IsValid(error);
+  }
+};
+
+// Keys: local_slam, global_slam.
+MapBuilderOptions2D ParseMapBuilderOptions2D(common::ConfigReader& reader);
+
+// One robot's 2D SLAM: local SLAM feeding nodes and submaps into global SLAM. The single entry
+// point shared by the offline runner and the daemon, so both follow the same code path.
+class MapBuilder2D {
+ public:
+  struct TimedPose2d {
+    double stamp_s;
+    common::Rigid2d pose;
+  };
+
+  MapBuilder2D(const MapBuilderOptions2D& options, common::Executor* executor);
+  MapBuilder2D(const MapBuilder2D&) = delete;
+  MapBuilder2D& operator=(const MapBuilder2D&) = delete;
+
+  void AddOdometry(const sensor::OdometryData& odometry) { local_.AddOdometry(odometry); }
+  void AddImu(const sensor::ImuData& imu) { local_.AddImu(imu); }
+  // The global pose estimate T_map_tracking of the scan, or empty if the scan was unusable.
+  std::optional<common::Rigid2d> AddScan(const sensor::LaserScan& scan);
+  // Waits for background work and runs the final optimisation.
+  void Finish() { pose_graph_.RunFinalOptimization(); }
+
+  // Node poses in the map frame, in time order.
+  std::vector<TimedPose2d> NodePoses() const;
+  const mapping::LocalTrajectoryBuilder2D& local_slam() const { return local_; }
+  PoseGraph2D& pose_graph() { return pose_graph_; }
+  const PoseGraph2D& pose_graph() const { return pose_graph_; }
+
+ private:
+  mapping::LocalTrajectoryBuilder2D local_;
+  PoseGraph2D pose_graph_;
+};
+
+// Poses at every odometry sample: the odometry increment from the nearest node in time
+// composed onto that node's pose (how Kümmerle et al. 2009 evaluate between-node times).
+// Samples before the first or after the last node use the nearest node too. Without odometry
+// the node poses are returned unchanged.
+std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
+    const std::vector<MapBuilder2D::TimedPose2d>& nodes,
+    const std::vector<sensor::OdometryData>& odometry);
+
+}  // namespace pose_graph
+}  // namespace fusemap
+
+#endif  // FUSEMAP_POSE_GRAPH_MAP_BUILDER_2D_H_

@@ -1,0 +1,131 @@
+#ifndef FUSEMAP_POSE_GRAPH_POSE_GRAPH_2D_H_
+#define FUSEMAP_POSE_GRAPH_POSE_GRAPH_2D_H_
+
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/thread_pool.h"
+#include "fusemap/mapping/submap_2d.h"
+#include "fusemap/pose_graph/constraint_builder_2d.h"
+#include "fusemap/pose_graph/moved_submaps.h"
+#include "fusemap/pose_graph/optimization_options.h"
+#include "fusemap/pose_graph/pose_graph_snapshot.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+struct PoseGraphOptions2D {
+  // Optimise after this many new nodes; 0 disables loop closure and optimisation entirely.
+  int optimize_every_n_nodes = 90;
+  ConstraintBuilderOptions2D constraint_builder;
+  OptimizationOptions optimization;
+  // Weights of the node-in-submap constraints from local SLAM (Cartographer's matcher_*).
+  double matcher_translation_weight = 5e2;
+  double matcher_rotation_weight = 1.6e3;
+  // Weights of the relative motion between consecutive nodes as local SLAM estimated it.
+  double local_slam_translation_weight = 1e5;
+  double local_slam_rotation_weight = 1e5;
+  int final_optimization_iterations = 200;
+
+  PoseGraphOptions2D();
+  bool IsValid(std::string* error) const;
+};
+
+// Keys: optimize_every_n_nodes, constraint_builder, optimization, matcher_translation_weight,
+// matcher_rotation_weight, local_slam_translation_weight, local_slam_rotation_weight,
+// final_optimization_iterations.
+PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader);
+
+// Global SLAM (Hess et al. 2016, Sec. V): collects local SLAM's nodes and submaps, searches
+// loop closures against finished submaps with branch-and-bound, and periodically re-solves all
+// poses with sparse pose adjustment. Searches and optimisations run as tasks on the given
+// executor; with an InlineExecutor every call completes synchronously and runs are
+// reproducible. All public methods are thread-safe.
+class PoseGraph2D {
+ public:
+  struct Stats {
+    int nodes = 0;
+    int submaps = 0;
+    int finished_submaps = 0;
+    int intra_constraints = 0;
+    int loop_closure_searches = 0;
+    int loop_closures_found = 0;
+    int optimizations = 0;
+    double loop_closure_search_s = 0.0;
+    double precomputation_s = 0.0;
+    double optimization_s = 0.0;
+  };
+  using SubmapsMovedCallback = std::function<void(const std::vector<SubmapMove>&)>;
+
+  PoseGraph2D(const PoseGraphOptions2D& options, common::Executor* executor);
+  ~PoseGraph2D();
+  PoseGraph2D(const PoseGraph2D&) = delete;
+  PoseGraph2D& operator=(const PoseGraph2D&) = delete;
+
+  // Adds a node (a scan local SLAM inserted). `insertion_submaps` are the submaps it went into,
+  // oldest first; the front one may have just been finished. Returns the node index.
+  int AddNode(double stamp_s, const common::Rigid2d& T_local_node,
+              const sensor::PointCloud2d& filtered_cloud,
+              const std::vector<std::shared_ptr<const mapping::Submap2D>>& insertion_submaps);
+
+  // Called after each optimisation with the submaps whose pose changed.
+  void AddSubmapsMovedCallback(SubmapsMovedCallback callback);
+
+  // Waits for pending work, then runs a last, longer optimisation.
+  void RunFinalOptimization();
+
+  // Current global estimate: T_map_local applied to local poses of nodes not yet optimised.
+  std::shared_ptr<const PoseGraphSnapshot> Snapshot() const;
+  std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
+  std::vector<double> node_stamps_s() const;
+  common::Rigid2d T_map_local() const;
+  Stats stats() const;
+
+ private:
+  struct NodeData {
+    double stamp_s;
+    common::Rigid2d T_local_node;
+    sensor::PointCloud2d cloud;
+    std::vector<int> inserted_into;
+  };
+  struct SubmapData {
+    std::shared_ptr<const mapping::Submap2D> submap;
+    std::shared_ptr<const LoopClosureMatcher2D> matcher;  // once finished and precomputed
+    bool finished = false;
+    FixedRatioSampler sampler{0.0};
+  };
+
+  int SubmapIndexLocked(const std::shared_ptr<const mapping::Submap2D>& submap,
+                        const common::Rigid2d& T_map_local);
+  // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
+  void ScheduleSearchLocked(int node, int submap);
+  void RunOptimization(int max_iterations);
+
+  const PoseGraphOptions2D options_;
+  common::Executor* const executor_;
+
+  mutable std::mutex mutex_;
+  std::vector<NodeData> nodes_;              // guarded by mutex_
+  std::vector<SubmapData> submaps_;          // guarded by mutex_
+  std::map<const mapping::Submap2D*, int> submap_index_;  // guarded by mutex_
+  std::vector<common::Rigid2d> T_map_nodes_;    // guarded by mutex_
+  std::vector<common::Rigid2d> T_map_submaps_;  // guarded by mutex_
+  std::vector<Constraint2D> constraints_;       // guarded by mutex_
+  int nodes_since_optimization_ = 0;            // guarded by mutex_
+  bool optimization_running_ = false;           // guarded by mutex_
+  std::uint64_t solve_count_ = 0;               // guarded by mutex_
+  Stats stats_;                                 // guarded by mutex_
+  std::vector<SubmapsMovedCallback> callbacks_;  // guarded by mutex_
+  // Work found while holding mutex_, handed to the executor once it is released.
+  std::vector<std::function<void()>> pending_searches_;  // guarded by mutex_
+};
+
+}  // namespace pose_graph
+}  // namespace fusemap
+
+#endif  // FUSEMAP_POSE_GRAPH_POSE_GRAPH_2D_H_

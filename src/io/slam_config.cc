@@ -1,0 +1,31 @@
+#include "fusemap/io/slam_config.h"
+
+#include "fusemap/common/config_reader.h"
+
+namespace fusemap {
+namespace io {
+
+bool LoadSlamConfig(const std::string& path, SlamConfig* config, std::string* error) {
+  auto reader = common::ConfigReader::FromFile(path, error);
+  if (!reader) return false;
+  SlamConfig result;
+  common::ConfigReader& channels = reader->Child("channels");
+  channels.Get("lidar", &result.channels.lidar);
+  channels.Get("odometry", &result.channels.odometry);
+  channels.Get("imu", &result.channels.imu);
+  channels.Get("rgbd", &result.channels.rgbd);
+  channels.Get("pose", &result.channels.pose);
+  common::ConfigReader& lidar = reader->Child("lidar");
+  lidar.Get("frame", &result.lidar.frame);
+  lidar.Get("range_min_m", &result.lidar.range_min_m);
+  lidar.Get("range_max_m", &result.lidar.range_max_m);
+  std::string lidar_error;
+  if (!result.lidar.IsValid(&lidar_error)) lidar.AddError("range_max_m", lidar_error);
+  result.map_builder = pose_graph::ParseMapBuilderOptions2D(*reader);
+  if (!reader->Finish(error)) return false;
+  *config = result;
+  return true;
+}
+
+}  // namespace io
+}  // namespace fusemap

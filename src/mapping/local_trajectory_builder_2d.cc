@@ -1,0 +1,139 @@
+#include "fusemap/mapping/local_trajectory_builder_2d.h"
+
+namespace fusemap {
+namespace mapping {
+
+LocalTrajectoryBuilderOptions2D::LocalTrajectoryBuilderOptions2D() {
+  loop_closure_adaptive_voxel_filter.max_length_m = 0.9f;
+  loop_closure_adaptive_voxel_filter.min_num_points = 100;
+}
+
+bool LocalTrajectoryBuilderOptions2D::IsValid(std::string* error) const {
+  if (voxel_filter_size_m <= 0.f) {
+    *error = "voxel_filter_size_m must be > 0";
+    return false;
+  }
+  if (min_num_returns < 1) {
+    *error = "min_num_returns must be >= 1";
+    return false;
+  }
+  if (pose_queue_duration_s <= 0.0) {
+    *error = "pose_queue_duration_s must be > 0";
+    return false;
+  }
+  return range_gate.IsValid(error) && adaptive_voxel_filter.IsValid(error) &&
+         loop_closure_adaptive_voxel_filter.IsValid(error) &&
+         real_time_correlative_scan_matcher.IsValid(error) && ceres_scan_matcher.IsValid(error) &&
+         motion_filter.IsValid(error) && submaps.IsValid(error);
+}
+
+LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader) {
+  LocalTrajectoryBuilderOptions2D options;
+  std::vector<double> xyt;
+  reader.Get("T_tracking_laser", &xyt);
+  if (reader.Has("T_tracking_laser")) {
+    if (xyt.size() == 3) {
+      options.T_tracking_laser = common::Rigid2d(xyt[0], xyt[1], xyt[2]);
+    } else {
+      reader.AddError("T_tracking_laser", "expected [x_m, y_m, yaw_rad]");
+    }
+  }
+  options.range_gate = sensor::ParseRangeGateOptions(reader.Child("range_gate"));
+  reader.Get("voxel_filter_size_m", &options.voxel_filter_size_m);
+  options.adaptive_voxel_filter =
+      sensor::ParseAdaptiveVoxelFilterOptions(reader.Child("adaptive_voxel_filter"));
+  if (reader.Has("loop_closure_adaptive_voxel_filter")) {
+    options.loop_closure_adaptive_voxel_filter = sensor::ParseAdaptiveVoxelFilterOptions(
+        reader.Child("loop_closure_adaptive_voxel_filter"));
+  }
+  reader.Get("min_num_returns", &options.min_num_returns);
+  reader.Get("use_online_correlative_scan_matching", &options.use_online_correlative_scan_matching);
+  options.real_time_correlative_scan_matcher = ParseRealTimeCorrelativeScanMatcherOptions2D(
+      reader.Child("real_time_correlative_scan_matcher"));
+  options.ceres_scan_matcher = ParseCeresScanMatcherOptions2D(reader.Child("ceres_scan_matcher"));
+  options.motion_filter = ParseMotionFilterOptions(reader.Child("motion_filter"));
+  options.submaps = ParseSubmapsOptions(reader.Child("submaps"));
+  reader.Get("use_odometry", &options.use_odometry);
+  reader.Get("use_imu", &options.use_imu);
+  reader.Get("pose_queue_duration_s", &options.pose_queue_duration_s);
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError("voxel_filter_size_m", error);
+  return options;
+}
+
+LocalTrajectoryBuilder2D::LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderOptions2D& options)
+    : options_(options),
+      active_submaps_(options.submaps),
+      motion_filter_(options.motion_filter),
+      real_time_matcher_(options.real_time_correlative_scan_matcher),
+      ceres_matcher_(options.ceres_scan_matcher),
+      extrapolator_(options.pose_queue_duration_s) {}
+
+void LocalTrajectoryBuilder2D::AddOdometry(const sensor::OdometryData& odometry) {
+  if (!options_.use_odometry) return;
+  if (!extrapolator_.AddOdometry(odometry)) ++stats_.odometry_rejected;
+}
+
+void LocalTrajectoryBuilder2D::AddImu(const sensor::ImuData& imu) {
+  if (!options_.use_imu) return;
+  if (!extrapolator_.AddImu(imu)) ++stats_.imu_rejected;
+}
+
+common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predicted,
+                                                    const sensor::PointCloud2d& cloud,
+                                                    double* score) {
+  *score = 0.0;
+  const auto submaps = active_submaps_.submaps();
+  if (submaps.empty()) return predicted;
+  // The older submap holds more data, so it is the better reference (Cartographer does the same).
+  const ProbabilityGrid& grid = submaps.front()->grid();
+  common::Rigid2d initial = predicted;
+  if (options_.use_online_correlative_scan_matching) {
+    *score = real_time_matcher_.Match(predicted, cloud, grid, &initial);
+  }
+  common::Rigid2d refined;
+  ceres::Solver::Summary summary;
+  ceres_matcher_.Match(predicted.translation(), initial, cloud, grid, &refined, &summary);
+  return refined;
+}
+
+std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D::AddScan(
+    const sensor::LaserScan& scan) {
+  ++stats_.scans;
+  if (scan.stamp_s <= last_scan_stamp_s_) {
+    ++stats_.out_of_order;
+    return std::nullopt;
+  }
+  const sensor::RangeData in_laser = sensor::RangeDataFromScan(scan, options_.range_gate);
+  if (static_cast<int>(in_laser.returns.size()) < options_.min_num_returns) {
+    ++stats_.too_few_returns;
+    return std::nullopt;
+  }
+  last_scan_stamp_s_ = scan.stamp_s;
+  const sensor::RangeData in_tracking = sensor::VoxelFilter(
+      sensor::TransformRangeData(in_laser, options_.T_tracking_laser), options_.voxel_filter_size_m);
+  const sensor::PointCloud2d matching_cloud =
+      sensor::AdaptiveVoxelFilter(in_tracking.returns, options_.adaptive_voxel_filter);
+
+  const common::Rigid2d predicted = extrapolator_.HasPose()
+                                        ? extrapolator_.ExtrapolatePose(scan.stamp_s)
+                                        : common::Rigid2d::Identity();
+  MatchingResult result;
+  result.stamp_s = scan.stamp_s;
+  result.T_local_tracking =
+      matching_cloud.empty() ? predicted : ScanMatch(predicted, matching_cloud, &result.match_score);
+  extrapolator_.AddPose(scan.stamp_s, result.T_local_tracking);
+
+  if (motion_filter_.IsSimilar(scan.stamp_s, result.T_local_tracking)) return result;
+  InsertionResult insertion;
+  insertion.insertion_submaps = active_submaps_.InsertRangeData(
+      sensor::TransformRangeData(in_tracking, result.T_local_tracking));
+  insertion.filtered_cloud =
+      sensor::AdaptiveVoxelFilter(in_tracking.returns, options_.loop_closure_adaptive_voxel_filter);
+  result.insertion = std::move(insertion);
+  ++stats_.inserted;
+  return result;
+}
+
+}  // namespace mapping
+}  // namespace fusemap

@@ -1,0 +1,81 @@
+#include "fusemap/pose_graph/constraint_builder_2d.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+ConstraintBuilderOptions2D::ConstraintBuilderOptions2D() {
+  // Loop closures trust the occupancy fit more and the search start less than local SLAM does
+  // (Cartographer's constraint_builder.ceres_scan_matcher defaults).
+  ceres_scan_matcher.occupied_space_weight = 20.0;
+  ceres_scan_matcher.translation_weight = 10.0;
+  ceres_scan_matcher.rotation_weight = 1.0;
+  ceres_scan_matcher.max_num_iterations = 10;
+}
+
+bool ConstraintBuilderOptions2D::IsValid(std::string* error) const {
+  if (sampling_ratio < 0.0 || sampling_ratio > 1.0) {
+    *error = "sampling_ratio must be in [0, 1]";
+    return false;
+  }
+  if (max_constraint_distance_m <= 0.0) {
+    *error = "max_constraint_distance_m must be > 0";
+    return false;
+  }
+  if (loop_closure_translation_weight <= 0.0 || loop_closure_rotation_weight <= 0.0) {
+    *error = "loop closure weights must be > 0";
+    return false;
+  }
+  return fast_correlative_scan_matcher.IsValid(error) && ceres_scan_matcher.IsValid(error);
+}
+
+ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader) {
+  ConstraintBuilderOptions2D options;
+  reader.Get("sampling_ratio", &options.sampling_ratio);
+  reader.Get("max_constraint_distance_m", &options.max_constraint_distance_m);
+  reader.Get("loop_closure_translation_weight", &options.loop_closure_translation_weight);
+  reader.Get("loop_closure_rotation_weight", &options.loop_closure_rotation_weight);
+  options.fast_correlative_scan_matcher = mapping::ParseFastCorrelativeScanMatcherOptions2D(
+      reader.Child("fast_correlative_scan_matcher"));
+  if (reader.Has("ceres_scan_matcher")) {
+    options.ceres_scan_matcher =
+        mapping::ParseCeresScanMatcherOptions2D(reader.Child("ceres_scan_matcher"));
+  }
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError("sampling_ratio", error);
+  return options;
+}
+
+LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
+                                           const ConstraintBuilderOptions2D& options)
+    : submap_(std::move(submap)),
+      options_(options),
+      fast_matcher_(submap_->grid(), options.fast_correlative_scan_matcher),
+      ceres_matcher_(options.ceres_scan_matcher) {}
+
+std::optional<Constraint2D> LoopClosureMatcher2D::Match(
+    const common::Rigid2d& T_submap_node_estimate, const sensor::PointCloud2d& cloud,
+    double* score) const {
+  *score = 0.0;
+  if (cloud.empty()) return std::nullopt;
+  // Submap grids live in the local SLAM frame; T_local_submap takes submap to grid coordinates.
+  const common::Rigid2d T_grid_submap = submap_->T_local_submap();
+  const common::Rigid2d initial = T_grid_submap * T_submap_node_estimate;
+  common::Rigid2d T_grid_node;
+  if (!fast_matcher_.Match(initial, cloud, options_.fast_correlative_scan_matcher.min_score, score,
+                          &T_grid_node)) {
+    return std::nullopt;
+  }
+  common::Rigid2d refined;
+  ceres::Solver::Summary summary;
+  ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, submap_->grid(), &refined,
+                       &summary);
+  Constraint2D constraint;
+  constraint.T_submap_node = T_grid_submap.inverse() * refined;
+  constraint.translation_weight = options_.loop_closure_translation_weight;
+  constraint.rotation_weight = options_.loop_closure_rotation_weight;
+  constraint.tag = Constraint2D::kInterSubmap;
+  return constraint;
+}
+
+}  // namespace pose_graph
+}  // namespace fusemap

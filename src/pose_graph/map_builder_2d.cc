@@ -1,0 +1,78 @@
+#include "fusemap/pose_graph/map_builder_2d.h"
+
+#include <algorithm>
+
+namespace fusemap {
+namespace pose_graph {
+
+MapBuilderOptions2D ParseMapBuilderOptions2D(common::ConfigReader& reader) {
+  MapBuilderOptions2D options;
+  options.local_slam = mapping::ParseLocalTrajectoryBuilderOptions2D(reader.Child("local_slam"));
+  options.global_slam = ParsePoseGraphOptions2D(reader.Child("global_slam"));
+  return options;
+}
+
+MapBuilder2D::MapBuilder2D(const MapBuilderOptions2D& options, common::Executor* executor)
+    : local_(options.local_slam), pose_graph_(options.global_slam, executor) {}
+
+std::optional<common::Rigid2d> MapBuilder2D::AddScan(const sensor::LaserScan& scan) {
+  auto result = local_.AddScan(scan);
+  if (!result) return std::nullopt;
+  if (result->insertion) {
+    pose_graph_.AddNode(result->stamp_s, result->T_local_tracking,
+                        result->insertion->filtered_cloud, result->insertion->insertion_submaps);
+  }
+  return pose_graph_.T_map_local() * result->T_local_tracking;
+}
+
+std::vector<MapBuilder2D::TimedPose2d> MapBuilder2D::NodePoses() const {
+  const auto snapshot = pose_graph_.Snapshot();
+  const std::vector<double> stamps = pose_graph_.node_stamps_s();
+  std::vector<TimedPose2d> poses;
+  const size_t n = std::min(stamps.size(), snapshot->T_map_nodes.size());
+  for (size_t i = 0; i < n; ++i) poses.push_back({stamps[i], snapshot->T_map_nodes[i]});
+  return poses;
+}
+
+namespace {
+
+// Odometry pose at `stamp_s` by interpolation between the neighbouring samples.
+common::Rigid2d OdometryAt(const std::vector<sensor::OdometryData>& odometry, double stamp_s) {
+  const auto it = std::lower_bound(
+      odometry.begin(), odometry.end(), stamp_s,
+      [](const sensor::OdometryData& o, double t) { return o.stamp_s < t; });
+  if (it == odometry.begin()) return it->pose;
+  if (it == odometry.end()) return odometry.back().pose;
+  const auto& b = *it;
+  const auto& a = *(it - 1);
+  const double span = b.stamp_s - a.stamp_s;
+  return common::Interpolate(a.pose, b.pose, span > 0 ? (stamp_s - a.stamp_s) / span : 1.0);
+}
+
+}  // namespace
+
+std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
+    const std::vector<MapBuilder2D::TimedPose2d>& nodes,
+    const std::vector<sensor::OdometryData>& odometry) {
+  if (odometry.empty() || nodes.empty()) return nodes;
+  std::vector<MapBuilder2D::TimedPose2d> dense;
+  dense.reserve(odometry.size());
+  size_t nearest = 0;
+  for (const auto& sample : odometry) {
+    // Both sequences are time-ordered, so the nearest node only moves forward.
+    while (nearest + 1 < nodes.size() &&
+           std::abs(nodes[nearest + 1].stamp_s - sample.stamp_s) <=
+               std::abs(nodes[nearest].stamp_s - sample.stamp_s)) {
+      ++nearest;
+    }
+    // Repeated odometry stamps would give a trajectory with two poses at one time.
+    if (!dense.empty() && sample.stamp_s <= dense.back().stamp_s) continue;
+    const auto& node = nodes[nearest];
+    const common::Rigid2d T_odom_node = OdometryAt(odometry, node.stamp_s);
+    dense.push_back({sample.stamp_s, node.pose * (T_odom_node.inverse() * sample.pose)});
+  }
+  return dense;
+}
+
+}  // namespace pose_graph
+}  // namespace fusemap

@@ -1,0 +1,282 @@
+// fusemap_offline: runs 2D SLAM over a recorded LCM log as fast as the CPU allows and writes
+// the trajectory, node poses and occupancy map.
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/thread_pool.h"
+#include "fusemap/eval/trajectory.h"
+#include "fusemap/io/lcm_conversions.h"
+#include "fusemap/io/lcm_log.h"
+#include "fusemap/io/map_writer.h"
+#include "fusemap/io/slam_config.h"
+#include "fusemap/io/tum_trajectory.h"
+#include "fusemap/mapping/grid_image.h"
+#include "fusemap/pose_graph/map_builder_2d.h"
+
+namespace fusemap {
+namespace {
+
+constexpr char kUsage[] =
+    "usage: fusemap_offline --log LOG.lcm --config CONFIG.yaml --out DIR [options]\n"
+    "\n"
+    "Runs laser SLAM over an LCM log as fast as the CPU allows and writes DIR/trajectory.tum\n"
+    "(a pose per odometry sample: odometry composed onto the nearest node), DIR/nodes.tum,\n"
+    "DIR/odometry.tum (the odometry input as received),\n"
+    "DIR/map.pgm + DIR/map.yaml (map_server) and DIR/map.png (map with trajectory).\n"
+    "\n"
+    "options:\n"
+    "  --no-loop-closure   local SLAM only (no loop-closure search, no optimisation)\n"
+    "  --threads N         worker threads for loop-closure search and optimisation (default 1:\n"
+    "                      reproducible; more is faster but no longer bit-for-bit repeatable)\n"
+    "  --quiet             no progress line\n"
+    "  --help              this text\n"
+    "\n"
+    "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n";
+
+struct Args {
+  std::string log, config, out;
+  bool loop_closure = true;
+  int threads = 1;
+  bool quiet = false;
+};
+
+bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string* out) {
+      if (i + 1 >= argc) {
+        *error = a + " needs a value";
+        return false;
+      }
+      *out = argv[++i];
+      return true;
+    };
+    std::string v;
+    if (a == "--log") {
+      if (!value(&args->log)) return false;
+    } else if (a == "--config") {
+      if (!value(&args->config)) return false;
+    } else if (a == "--out") {
+      if (!value(&args->out)) return false;
+    } else if (a == "--no-loop-closure") {
+      args->loop_closure = false;
+    } else if (a == "--quiet") {
+      args->quiet = true;
+    } else if (a == "--threads") {
+      if (!value(&v)) return false;
+      char* end = nullptr;
+      args->threads = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+      if (*end != '\0' || args->threads < 1 || args->threads > 64) {
+        *error = "--threads takes a whole number from 1 to 64";
+        return false;
+      }
+    } else {
+      *error = "unknown argument '" + a + "'";
+      return false;
+    }
+  }
+  if (args->log.empty() || args->config.empty() || args->out.empty()) {
+    *error = "--log, --config and --out are required";
+    return false;
+  }
+  return true;
+}
+
+eval::Trajectory ToTrajectory(const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& poses) {
+  eval::Trajectory trajectory;
+  for (const auto& p : poses) {
+    if (!trajectory.empty() && p.stamp_s <= trajectory.back().stamp_s) continue;
+    trajectory.push_back({p.stamp_s, common::Rigid3d::FromRigid2d(p.pose)});
+  }
+  return trajectory;
+}
+
+double Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t i = std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
+  return values[i];
+}
+
+int Run(const Args& args) {
+  io::SlamConfig config;
+  std::string error;
+  if (!io::LoadSlamConfig(args.config, &config, &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 2;
+  }
+  if (!args.loop_closure) config.map_builder.global_slam.optimize_every_n_nodes = 0;
+  io::LcmLogReader reader;
+  if (!reader.Open(args.log, &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 2;
+  }
+  std::error_code ec;
+  std::filesystem::create_directories(args.out, ec);
+  if (ec) {
+    std::fprintf(stderr, "fusemap_offline: cannot create output folder %s: %s\n", args.out.c_str(),
+                 ec.message().c_str());
+    return 2;
+  }
+
+  std::unique_ptr<common::Executor> executor;
+  if (args.threads > 1) {
+    executor = std::make_unique<common::ThreadPool>(args.threads);
+  } else {
+    executor = std::make_unique<common::InlineExecutor>();
+  }
+  pose_graph::MapBuilder2D builder(config.map_builder, executor.get());
+
+  std::vector<sensor::OdometryData> odometry;
+  std::vector<double> scan_cost_ms;
+  int scans = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
+  double first_stamp_s = 0.0, last_stamp_s = 0.0;
+  bool have_stamp = false;
+  const auto start = std::chrono::steady_clock::now();
+  auto last_progress = start;
+  io::LogEvent event;
+  while (reader.Next(&event)) {
+    const int size = static_cast<int>(event.data.size());
+    double stamp_s = 0.0;
+    if (event.channel == config.channels.lidar) {
+      sensor::LaserScan scan;
+      if (!io::DecodeLaserScan(event.data.data(), size, config.lidar, &scan, &error)) {
+        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        continue;
+      }
+      stamp_s = scan.stamp_s;
+      const auto t0 = std::chrono::steady_clock::now();
+      builder.AddScan(scan);
+      scan_cost_ms.push_back(
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+      ++scans;
+    } else if (event.channel == config.channels.odometry) {
+      sensor::OdometryData data;
+      if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) {
+        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        continue;
+      }
+      stamp_s = data.stamp_s;
+      if (!odometry.empty() && data.stamp_s < odometry.back().stamp_s) {
+        ++odometry_out_of_order;
+        continue;
+      }
+      odometry.push_back(data);
+      builder.AddOdometry(data);
+    } else if (event.channel == config.channels.imu) {
+      sensor::ImuData data;
+      if (!io::DecodeImu(event.data.data(), size, &data, &error)) {
+        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        continue;
+      }
+      stamp_s = data.stamp_s;
+      builder.AddImu(data);
+    } else {
+      ++other_messages;
+      continue;
+    }
+    if (!have_stamp) first_stamp_s = stamp_s;
+    have_stamp = true;
+    last_stamp_s = std::max(last_stamp_s, stamp_s);
+    const auto now = std::chrono::steady_clock::now();
+    if (!args.quiet && now - last_progress > std::chrono::seconds(1)) {
+      last_progress = now;
+      std::fprintf(stderr, "\r[fusemap_offline] scans=%d log_t=%.1fs wall=%.1fs", scans,
+                   last_stamp_s - first_stamp_s,
+                   std::chrono::duration<double>(now - start).count());
+    }
+  }
+  builder.Finish();
+  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (!args.quiet) std::fprintf(stderr, "\n");
+  if (scans == 0) {
+    std::fprintf(stderr, "fusemap_offline: %s has no usable scans on channel %s\n", args.log.c_str(),
+                 config.channels.lidar.c_str());
+    return 1;
+  }
+
+  const auto nodes = builder.NodePoses();
+  const auto dense = pose_graph::DensifyWithOdometry(nodes, odometry);
+  std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
+  for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+  const std::string out = args.out + "/";
+  if (!io::WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), &error) ||
+      !io::WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), &error) ||
+      !io::WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 1;
+  }
+  const auto snapshot = builder.pose_graph().Snapshot();
+  const auto submaps = builder.pose_graph().submaps();
+  std::vector<mapping::PlacedGrid> grids;
+  for (size_t i = 0; i < submaps.size() && i < snapshot->T_map_submaps.size(); ++i) {
+    grids.emplace_back(snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
+                       &submaps[i]->grid());
+  }
+  const double resolution_m = config.map_builder.local_slam.submaps.resolution_m;
+  const mapping::GridImage image = mapping::RenderMap(grids, resolution_m);
+  io::MapImage map;
+  map.width = image.width;
+  map.height = image.height;
+  map.resolution_m = image.resolution_m;
+  map.origin_m = image.origin_m;
+  map.pixels = image.pixels;
+  std::vector<Eigen::Vector2d> xy;
+  for (const auto& p : dense) xy.push_back(p.pose.translation());
+  if (!io::WriteMapPgmYaml(map, out + "map", &error) ||
+      !io::WriteMapPng(map, xy, out + "map.png", &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 1;
+  }
+
+  const auto local = builder.local_slam().stats();
+  const auto global = builder.pose_graph().stats();
+  struct rusage usage;
+  getrusage(RUSAGE_SELF, &usage);
+  std::printf("log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d\n",
+              args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order);
+  std::printf("local_slam: scans=%d inserted=%d too_few_returns=%d out_of_order=%d\n", local.scans,
+              local.inserted, local.too_few_returns, local.out_of_order);
+  std::printf(
+      "global_slam: nodes=%d submaps=%d loop_closure_searches=%d loop_closures_accepted=%d "
+      "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f\n",
+      global.nodes, global.submaps, global.loop_closure_searches, global.loop_closures_found,
+      global.optimizations, global.loop_closure_search_s, global.precomputation_s,
+      global.optimization_s);
+  std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
+              Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
+              1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
+  std::printf("wrote %strajectory.tum %snodes.tum %smap.pgm %smap.yaml %smap.png\n", out.c_str(),
+              out.c_str(), out.c_str(), out.c_str(), out.c_str());
+  const double duration_s = last_stamp_s - first_stamp_s;
+  std::printf("scans=%d wall_s=%.3f realtime_factor=%.1f\n", scans, wall_s,
+              wall_s > 0 ? duration_s / wall_s : 0.0);
+  return 0;
+}
+
+}  // namespace
+}  // namespace fusemap
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::fputs(fusemap::kUsage, stdout);
+      return 0;
+    }
+  }
+  fusemap::Args args;
+  std::string error;
+  if (!fusemap::ParseArgs(argc, argv, &args, &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n\n%s", error.c_str(), fusemap::kUsage);
+    return 2;
+  }
+  return fusemap::Run(args);
+}
