@@ -101,5 +101,22 @@ bool ProbabilityGrid::ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2
   return any;
 }
 
+ProbabilityGrid ProbabilityGrid::Cropped() const {
+  Eigen::Array2i min_cell, max_cell;
+  if (!ComputeKnownBounds(&min_cell, &max_cell)) return *this;
+  MapLimits cropped = limits_;
+  cropped.origin_m = limits_.origin_m + limits_.resolution_m * min_cell.cast<double>().matrix();
+  cropped.num_x_cells = max_cell.x() - min_cell.x() + 1;
+  cropped.num_y_cells = max_cell.y() - min_cell.y() + 1;
+  ProbabilityGrid result(cropped);
+  for (int y = 0; y < cropped.num_y_cells; ++y) {
+    for (int x = 0; x < cropped.num_x_cells; ++x) {
+      result.cells_[cropped.FlatIndex(Eigen::Array2i(x, y))] =
+          cells_[limits_.FlatIndex(Eigen::Array2i(x, y) + min_cell)];
+    }
+  }
+  return result;
+}
+
 }  // namespace mapping
 }  // namespace fusemap

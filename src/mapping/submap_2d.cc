@@ -56,6 +56,7 @@ void Submap2D::InsertRangeData(const sensor::RangeData& range_data_in_local,
 
 void Submap2D::Finish() {
   assert(!finished_);
+  grid_ = grid_.Cropped();
   finished_ = true;
 }
 

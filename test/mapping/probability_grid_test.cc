@@ -72,6 +72,25 @@ TEST(ProbabilityGridTest, GrowIsANoOpForInteriorPoints) {
   EXPECT_NEAR(grid.limits().origin_m.x(), -1.0, 1e-12);
 }
 
+TEST(ProbabilityGridTest, CroppedKeepsKnownCellsAtTheirWorldPositions) {
+  MapLimits limits;
+  limits.resolution_m = 0.1;
+  limits.origin_m = Eigen::Vector2d(-5.0, -5.0);
+  limits.num_x_cells = 100;
+  limits.num_y_cells = 100;
+  ProbabilityGrid grid(limits);
+  grid.SetProbability(Eigen::Array2i(10, 20), 0.8f);
+  grid.SetProbability(Eigen::Array2i(30, 25), 0.2f);
+  const ProbabilityGrid cropped = grid.Cropped();
+  EXPECT_EQ(cropped.limits().num_x_cells, 21);
+  EXPECT_EQ(cropped.limits().num_y_cells, 6);
+  for (const Eigen::Array2i& cell : {Eigen::Array2i(10, 20), Eigen::Array2i(30, 25)}) {
+    const Eigen::Vector2f world = limits.GetCellCenter(cell).cast<float>();
+    EXPECT_NEAR(cropped.GetProbability(cropped.limits().GetCellIndex(world)),
+                grid.GetProbability(cell), 1e-6);
+  }
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

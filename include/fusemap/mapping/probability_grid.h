@@ -39,6 +39,10 @@ class ProbabilityGrid {
   // Bounding box (in cells) of the known cells; false if nothing is known.
   bool ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const;
 
+  // The smallest grid holding every known cell, at the same world positions. Growth by
+  // doubling leaves mostly unknown space that loop-closure precomputation would pay for.
+  ProbabilityGrid Cropped() const;
+
  private:
   MapLimits limits_;
   std::vector<uint16_t> cells_;
