@@ -98,8 +98,6 @@ int PoseGraph2D::AddNode(
       constraints_.push_back(constraint);
       ++stats_.intra_constraints;
     }
-    if (options_.optimize_every_n_nodes == 0) return node;
-
     // A submap finished by this insertion gets its precomputation grids, then is searched for
     // every earlier node near it.
     for (const auto& submap : insertion_submaps) {
@@ -107,6 +105,7 @@ int PoseGraph2D::AddNode(
       if (submap->finished() && !submaps_[s].finished) {
         submaps_[s].finished = true;
         ++stats_.finished_submaps;
+        if (options_.optimize_every_n_nodes == 0) continue;
         tasks.push_back([this, s, submap] {
           const auto start = std::chrono::steady_clock::now();
           auto matcher = std::make_shared<const LoopClosureMatcher2D>(submap, options_.constraint_builder);
@@ -124,6 +123,7 @@ int PoseGraph2D::AddNode(
         });
       }
     }
+    if (options_.optimize_every_n_nodes == 0) return node;
     // The new node against every finished submap near it.
     for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
       if (submaps_[s].matcher) ScheduleSearchLocked(node, s);
