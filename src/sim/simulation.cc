@@ -1,0 +1,81 @@
+#include "fusemap/sim/simulation.h"
+
+#include <cmath>
+
+#include "fusemap/sim/random.h"
+
+namespace fusemap {
+namespace sim {
+
+bool SimulationOptions::IsValid(std::string* error) const {
+  if (!(seconds > 0.0 && seconds <= 24 * 3600.0)) {
+    *error = "seconds must be in (0, 86400]";
+    return false;
+  }
+  if (!(ground_truth_rate_hz > 0.0 && ground_truth_rate_hz <= 10000.0)) {
+    *error = "ground_truth_rate_hz must be in (0, 10000]";
+    return false;
+  }
+  return laser.IsValid(error) && odometry.IsValid(error) && imu.IsValid(error) &&
+         (!rgbd_enabled || rgbd.IsValid(error));
+}
+
+SimulationOptions ParseSimulationOptions(common::ConfigReader& reader) {
+  SimulationOptions o;
+  reader.Get("seconds", &o.seconds);
+  int seed = static_cast<int>(o.seed);
+  reader.Get("seed", &seed);
+  if (seed < 0) reader.AddError("seed", "must be >= 0");
+  o.seed = static_cast<uint64_t>(std::max(0, seed));
+  reader.Get("start_time_s", &o.start_time_s);
+  reader.Get("ground_truth_rate_hz", &o.ground_truth_rate_hz);
+  reader.Get("rgbd_enabled", &o.rgbd_enabled);
+  o.laser = ParseLaserOptions(reader.Child("laser"));
+  reader.Child("odometry").Get("rate_hz", &o.odometry.rate_hz);
+  reader.Child("imu").Get("rate_hz", &o.imu.rate_hz);
+  o.rgbd = ParseRgbdCameraOptions(reader.Child("rgbd"));
+  std::string error;
+  if (!o.IsValid(&error)) reader.AddError("simulation", error);
+  return o;
+}
+
+std::unique_ptr<Simulation> Simulation::Create(World world, const SimulationOptions& options,
+                                               std::string* error) {
+  if (!options.IsValid(error)) return nullptr;
+  if (world.robot.waypoints_m.size() < 3) {
+    *error = "world '" + world.name + "' has fewer than 3 robot waypoints";
+    return nullptr;
+  }
+  std::unique_ptr<Simulation> simulation(new Simulation(std::move(world), options));
+  if (!simulation->floor_tags_.Init(simulation->world_.tags, error)) return nullptr;
+  return simulation;
+}
+
+Simulation::Simulation(World world, const SimulationOptions& options)
+    : world_(std::move(world)), options_(options), trajectory_(world_.robot) {}
+
+int Simulation::Count(double rate_hz, double seconds) {
+  // Samples at i / rate strictly before `seconds` (tiny epsilon: 60 s at 25 Hz is 1500).
+  return static_cast<int>(std::ceil(seconds * rate_hz - 1e-9));
+}
+
+sensor::LaserScan Simulation::Laser(int index) const {
+  const double t = index / options_.laser.rate_hz;
+  std::mt19937_64 rng = MakeRng(options_.seed, NoiseStream::kLaser, index);
+  return SimulateLaserScan(PrismsAt(world_, t), Truth(t).T_world_base, Stamp(t), options_.laser, &rng);
+}
+
+sensor::RgbdFrame Simulation::Rgbd(int index) const {
+  const double t = index / options_.rgbd.rate_hz;
+  return RenderRgbdFrame(world_, PrismsAt(world_, t), floor_tags_, Truth(t).T_world_base, Stamp(t),
+                         options_.rgbd, options_.seed, index);
+}
+
+OdometrySimulator Simulation::MakeOdometrySimulator() const {
+  return OdometrySimulator(options_.odometry, options_.seed);
+}
+
+ImuSimulator Simulation::MakeImuSimulator() const { return ImuSimulator(options_.imu, options_.seed); }
+
+}  // namespace sim
+}  // namespace fusemap
