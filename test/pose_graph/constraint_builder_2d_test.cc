@@ -1,0 +1,191 @@
+#include "fusemap/pose_graph/constraint_builder_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "fusemap/common/math.h"
+#include "fusemap/sensor/range_data_builder.h"
+#include "fusemap/sensor/voxel_filter.h"
+
+namespace fusemap {
+namespace pose_graph {
+namespace {
+
+constexpr double kRangeMaxM = 12.0;
+constexpr int kNumBeams = 360;
+
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+
+void AddBox(double x0, double y0, double x1, double y1, std::vector<Segment>* walls) {
+  walls->push_back({{x0, y0}, {x1, y0}});
+  walls->push_back({{x1, y0}, {x1, y1}});
+  walls->push_back({{x1, y1}, {x0, y1}});
+  walls->push_back({{x0, y1}, {x0, y0}});
+}
+
+// A 12 m x 8 m room with an island in the middle and two corner boxes.
+std::vector<Segment> Room() {
+  std::vector<Segment> walls;
+  AddBox(0.0, 0.0, 12.0, 8.0, &walls);
+  AddBox(5.5, 3.5, 6.5, 4.5, &walls);
+  AddBox(10.5, 0.5, 11.5, 1.5, &walls);
+  AddBox(1.0, 6.5, 2.0, 7.5, &walls);
+  return walls;
+}
+
+// A round room (24-gon of radius 3 m around the origin): nothing like the rectangular one.
+std::vector<Segment> RoundRoom() {
+  std::vector<Segment> walls;
+  for (int i = 0; i < 24; ++i) {
+    const double a0 = 2.0 * common::kPi * i / 24.0;
+    const double a1 = 2.0 * common::kPi * (i + 1) / 24.0;
+    walls.push_back({{3.0 * std::cos(a0), 3.0 * std::sin(a0)},
+                     {3.0 * std::cos(a1), 3.0 * std::sin(a1)}});
+  }
+  return walls;
+}
+
+double CastRay(const std::vector<Segment>& walls, const Eigen::Vector2d& p,
+               const Eigen::Vector2d& d) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& s : walls) {
+    const Eigen::Vector2d e = s.b - s.a;
+    const double denom = d.x() * e.y() - d.y() * e.x();
+    if (std::abs(denom) < 1e-12) continue;
+    const Eigen::Vector2d w = s.a - p;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
+    const double u = (w.x() * d.y() - w.y() * d.x()) / denom;
+    if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+  }
+  return best;
+}
+
+// Range data of a 360-beam, 360 deg scan at `pose`, in the scanner frame.
+sensor::RangeData SimulateRangeData(const std::vector<Segment>& walls,
+                                    const common::Rigid2d& pose) {
+  sensor::LaserScan scan;
+  scan.angle_min_rad = static_cast<float>(-common::kPi);
+  scan.angle_increment_rad = static_cast<float>(2.0 * common::kPi / kNumBeams);
+  scan.range_min_m = 0.1f;
+  scan.range_max_m = static_cast<float>(kRangeMaxM);
+  for (int i = 0; i < kNumBeams; ++i) {
+    const double angle = pose.angle_rad() + scan.angle_min_rad + i * scan.angle_increment_rad;
+    const double r = CastRay(walls, pose.translation(), {std::cos(angle), std::sin(angle)});
+    scan.ranges_m.push_back(r < kRangeMaxM ? static_cast<float>(r)
+                                           : std::numeric_limits<float>::infinity());
+  }
+  return sensor::RangeDataFromScan(scan, sensor::RangeGateOptions());
+}
+
+sensor::PointCloud2d LoopClosureCloud(const sensor::RangeData& range_data) {
+  sensor::AdaptiveVoxelFilterOptions options;
+  options.max_length_m = 0.9f;
+  options.min_num_points = 100;
+  return sensor::AdaptiveVoxelFilter(range_data.returns, options);
+}
+
+common::Rigid2d ArcPose(int i) {
+  const double theta = 0.1 * i / 2.5;
+  return common::Rigid2d(6.0 + 2.5 * std::sin(theta), 4.0 - 2.5 * std::cos(theta), theta);
+}
+
+// A finished submap built from 20 scans along the arc, inserted at their true poses (so the
+// local frame is the world frame).
+std::shared_ptr<const mapping::Submap2D> BuildFinishedSubmap() {
+  mapping::SubmapsOptions options;
+  options.num_range_data = 10;
+  mapping::ActiveSubmaps2D active(options);
+  std::shared_ptr<const mapping::Submap2D> front;
+  for (int i = 0; i < 20; ++i) {
+    const sensor::RangeData data = SimulateRangeData(Room(), ArcPose(i));
+    front = active.InsertRangeData(sensor::TransformRangeData(data, ArcPose(i))).front();
+  }
+  return front;
+}
+
+TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
+  const auto submap = BuildFinishedSubmap();
+  ASSERT_TRUE(submap->finished());
+  const ConstraintBuilderOptions2D options;
+  const LoopClosureMatcher2D matcher(submap, options);
+
+  // A pose between the ones the submap was built from.
+  const common::Rigid2d T_world_node(6.9, 1.75, 0.35);
+  const common::Rigid2d T_submap_node = submap->T_local_submap().inverse() * T_world_node;
+  const common::Rigid2d estimate(T_submap_node.translation() + Eigen::Vector2d(0.5, 0.0),
+                                 T_submap_node.angle_rad() + common::DegToRad(5.0));
+  double score = 0.0;
+  const auto constraint =
+      matcher.Match(estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score);
+  ASSERT_TRUE(constraint.has_value()) << "score " << score;
+  std::printf("score %.3f, error %.4f m %.4f deg\n", score,
+              (constraint->T_submap_node.translation() - T_submap_node.translation()).norm(),
+              common::NormalizeAngle(constraint->T_submap_node.angle_rad() -
+                                     T_submap_node.angle_rad()) * 180.0 / common::kPi);
+  EXPECT_GT(score, options.fast_correlative_scan_matcher.min_score);
+  EXPECT_EQ(constraint->tag, Constraint2D::kInterSubmap);
+  EXPECT_EQ(constraint->translation_weight, options.loop_closure_translation_weight);
+  EXPECT_EQ(constraint->rotation_weight, options.loop_closure_rotation_weight);
+  EXPECT_LT((constraint->T_submap_node.translation() - T_submap_node.translation()).norm(), 0.03);
+  EXPECT_LT(std::abs(common::NormalizeAngle(constraint->T_submap_node.angle_rad() -
+                                            T_submap_node.angle_rad())),
+            common::DegToRad(0.5));
+}
+
+TEST(LoopClosureMatcher2DTest, RejectsScanFromDifferentRoom) {
+  const auto submap = BuildFinishedSubmap();
+  const ConstraintBuilderOptions2D options;
+  const LoopClosureMatcher2D matcher(submap, options);
+  const common::Rigid2d T_world_node(6.9, 1.75, 0.35);
+  const common::Rigid2d estimate = submap->T_local_submap().inverse() * T_world_node;
+  double score = 1.0;
+  const auto constraint = matcher.Match(
+      estimate, LoopClosureCloud(SimulateRangeData(RoundRoom(), common::Rigid2d(0.4, -0.2, 0.1))),
+      &score);
+  std::printf("different room: score %.3f\n", score);
+  EXPECT_FALSE(constraint.has_value());
+  EXPECT_LT(score, options.fast_correlative_scan_matcher.min_score);
+}
+
+TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {
+  const auto submap = BuildFinishedSubmap();
+  const LoopClosureMatcher2D matcher(submap, ConstraintBuilderOptions2D());
+  double score = 1.0;
+  EXPECT_FALSE(matcher.Match(common::Rigid2d(), {}, &score).has_value());
+  EXPECT_EQ(score, 0.0);
+}
+
+TEST(FixedRatioSamplerTest, PassesExpectedFraction) {
+  for (const double ratio : {0.0, 0.1, 0.3, 0.5, 1.0}) {
+    FixedRatioSampler sampler(ratio);
+    int passed = 0;
+    for (int n = 1; n <= 1000; ++n) {
+      if (sampler.Pulse()) ++passed;
+      // The fewest samples that keep passed / n >= ratio.
+      const int expected = static_cast<int>(std::ceil(ratio * n - 1e-9));
+      ASSERT_EQ(passed, expected) << "ratio " << ratio << " after " << n << " pulses";
+    }
+  }
+}
+
+TEST(ConstraintBuilderOptions2DTest, RejectsBadOptions) {
+  std::string error;
+  ConstraintBuilderOptions2D options;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
+  options.sampling_ratio = 1.5;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("sampling_ratio"), std::string::npos);
+  options.sampling_ratio = 0.3;
+  options.max_constraint_distance_m = 0.0;
+  EXPECT_FALSE(options.IsValid(&error));
+}
+
+}  // namespace
+}  // namespace pose_graph
+}  // namespace fusemap

@@ -1,0 +1,222 @@
+#include "fusemap/pose_graph/map_builder_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "fusemap/common/math.h"
+
+namespace fusemap {
+namespace pose_graph {
+namespace {
+
+constexpr double kRangeMaxM = 12.0;
+constexpr int kNumBeams = 360;
+constexpr double kArcRadiusM = 2.5;
+constexpr double kStepM = 0.15;
+
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+
+void AddBox(double x0, double y0, double x1, double y1, std::vector<Segment>* walls) {
+  walls->push_back({{x0, y0}, {x1, y0}});
+  walls->push_back({{x1, y0}, {x1, y1}});
+  walls->push_back({{x1, y1}, {x0, y1}});
+  walls->push_back({{x0, y1}, {x0, y0}});
+}
+
+// A 12 m x 8 m room with an island in the middle and two corner boxes.
+std::vector<Segment> Room() {
+  std::vector<Segment> walls;
+  AddBox(0.0, 0.0, 12.0, 8.0, &walls);
+  AddBox(5.5, 3.5, 6.5, 4.5, &walls);
+  AddBox(10.5, 0.5, 11.5, 1.5, &walls);
+  AddBox(1.0, 6.5, 2.0, 7.5, &walls);
+  return walls;
+}
+
+double CastRay(const std::vector<Segment>& walls, const Eigen::Vector2d& p,
+               const Eigen::Vector2d& d) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& s : walls) {
+    const Eigen::Vector2d e = s.b - s.a;
+    const double denom = d.x() * e.y() - d.y() * e.x();
+    if (std::abs(denom) < 1e-12) continue;
+    const Eigen::Vector2d w = s.a - p;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
+    const double u = (w.x() * d.y() - w.y() * d.x()) / denom;
+    if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+  }
+  return best;
+}
+
+// A 360-beam scan with uniform range noise of +-noise_m (std::mt19937 output is specified by
+// the standard, and the mapping to metres is ours, so the noise is the same everywhere).
+sensor::LaserScan SimulateScan(const std::vector<Segment>& walls, const common::Rigid2d& pose,
+                               double stamp_s, double noise_m, std::mt19937* rng) {
+  sensor::LaserScan scan;
+  scan.stamp_s = stamp_s;
+  scan.angle_min_rad = static_cast<float>(-common::kPi);
+  scan.angle_increment_rad = static_cast<float>(2.0 * common::kPi / kNumBeams);
+  scan.range_min_m = 0.1f;
+  scan.range_max_m = static_cast<float>(kRangeMaxM);
+  for (int i = 0; i < kNumBeams; ++i) {
+    const double angle = pose.angle_rad() + scan.angle_min_rad + i * scan.angle_increment_rad;
+    double r = CastRay(walls, pose.translation(), {std::cos(angle), std::sin(angle)});
+    r += noise_m * (2.0 * ((*rng)() / 4294967296.0) - 1.0);
+    scan.ranges_m.push_back(r < kRangeMaxM ? static_cast<float>(r)
+                                           : std::numeric_limits<float>::infinity());
+  }
+  return scan;
+}
+
+common::Rigid2d TruePose(int i) {
+  const double theta = kStepM * i / kArcRadiusM;
+  return common::Rigid2d(6.0 + kArcRadiusM * std::sin(theta),
+                         4.0 - kArcRadiusM * std::cos(theta), theta);
+}
+
+MapBuilderOptions2D TestOptions(int optimize_every_n_nodes) {
+  MapBuilderOptions2D options;
+  options.local_slam.use_imu = false;
+  options.local_slam.submaps.num_range_data = 10;
+  // A deliberately weaker local SLAM (Ceres refinement only, no correlative search) so that
+  // it drifts by decimetres over the loop and loop closure has something to remove.
+  options.local_slam.use_online_correlative_scan_matching = false;
+  options.global_slam.optimize_every_n_nodes = optimize_every_n_nodes;
+  auto& constraints = options.global_slam.constraint_builder;
+  constraints.sampling_ratio = 1.0;
+  constraints.max_constraint_distance_m = 3.0;
+  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
+  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
+  return options;
+}
+
+struct LoopRun {
+  PoseGraph2D::Stats stats;
+  double end_error_m = 0.0;
+  int moved_callbacks = 0;
+  int moved_submaps = 0;
+};
+
+// 1.1 turns around the island, so the end revisits the start; odometry with 2 % scale error
+// and 0.3 deg yaw bias per step, ranges with +-2 cm noise.
+LoopRun DriveLoop(int optimize_every_n_nodes, common::Executor* executor) {
+  const std::vector<Segment> walls = Room();
+  const MapBuilderOptions2D options = TestOptions(optimize_every_n_nodes);
+  std::string error;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
+  MapBuilder2D builder(options, executor);
+  LoopRun run;
+  builder.pose_graph().AddSubmapsMovedCallback([&run](const std::vector<SubmapMove>& moves) {
+    ++run.moved_callbacks;
+    run.moved_submaps += static_cast<int>(moves.size());
+  });
+  std::mt19937 rng(42);
+  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::Rigid2d odom = TruePose(0);
+  for (int i = 0; i < num_scans; ++i) {
+    if (i > 0) {
+      const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
+      odom = odom * common::Rigid2d(1.02 * delta.translation(),
+                                    delta.angle_rad() + common::DegToRad(0.3));
+    }
+    const double stamp_s = 0.1 * i;
+    builder.AddOdometry({stamp_s, odom});
+    EXPECT_TRUE(builder.AddScan(SimulateScan(walls, TruePose(i), stamp_s, 0.02, &rng)));
+  }
+  builder.Finish();
+  run.stats = builder.pose_graph().stats();
+  const auto poses = builder.NodePoses();
+  EXPECT_EQ(static_cast<int>(poses.size()), builder.local_slam().stats().inserted);
+  // Nodes are every scan here (each step turns more than the motion filter's 1 deg).
+  EXPECT_EQ(static_cast<int>(poses.size()), num_scans);
+  const common::Rigid2d truth = TruePose(0).inverse() * TruePose(num_scans - 1);
+  const common::Rigid2d estimate = poses.front().pose.inverse() * poses.back().pose;
+  run.end_error_m = (truth.translation() - estimate.translation()).norm();
+  return run;
+}
+
+TEST(MapBuilder2DTest, LoopClosureBeatsLocalSlamAlone) {
+  common::InlineExecutor executor;
+  const LoopRun local_only = DriveLoop(0, &executor);
+  const LoopRun global = DriveLoop(10, &executor);
+  std::printf("end error: local only %.4f m, with loop closure %.4f m (%d closures in %d "
+              "searches, %d optimisations)\n",
+              local_only.end_error_m, global.end_error_m, global.stats.loop_closures_found,
+              global.stats.loop_closure_searches, global.stats.optimizations);
+  EXPECT_EQ(local_only.stats.loop_closure_searches, 0);
+  EXPECT_EQ(local_only.moved_callbacks, 0);
+  EXPECT_GT(global.stats.loop_closures_found, 0);
+  EXPECT_GT(global.moved_callbacks, 0);
+  EXPECT_GT(global.moved_submaps, 0);
+  EXPECT_GT(local_only.end_error_m, 0.2);
+  EXPECT_LT(global.end_error_m, 0.5 * local_only.end_error_m);
+  EXPECT_LT(global.end_error_m, 0.08);
+}
+
+TEST(MapBuilder2DTest, ThreadPoolRunFindsLoopClosures) {
+  common::ThreadPool pool(2);
+  const LoopRun run = DriveLoop(10, &pool);
+  EXPECT_GT(run.stats.loop_closures_found, 0);
+  EXPECT_GT(run.stats.optimizations, 0);
+  EXPECT_LT(run.end_error_m, 0.08);
+}
+
+// Ground truth G(t) of a robot driving a curve.
+common::Rigid2d G(double t) { return common::Rigid2d(t, 0.5 * t * t, 0.3 * t); }
+
+TEST(DensifyWithOdometryTest, ComposesOdometryOntoNearestNode) {
+  // The odometry frame is off from the map frame by X; the node at t = 2 carries a correction C
+  // (as after a loop closure) which must reach the samples nearest to it and only those.
+  const common::Rigid2d X(3.0, -1.0, 0.7);
+  const common::Rigid2d C(0.2, 0.1, 0.05);
+  const std::vector<MapBuilder2D::TimedPose2d> nodes = {{1.0, G(1.0)}, {2.0, C * G(2.0)}};
+  std::vector<sensor::OdometryData> odometry;
+  for (const double t : {0.5, 1.0, 1.25, 1.5, 1.5, 2.0, 2.5}) odometry.push_back({t, X * G(t)});
+
+  const auto dense = DensifyWithOdometry(nodes, odometry);
+  ASSERT_EQ(dense.size(), 6u);  // the repeated stamp 1.5 is dropped
+  const std::vector<double> stamps = {0.5, 1.0, 1.25, 1.5, 2.0, 2.5};
+  for (size_t i = 0; i < dense.size(); ++i) {
+    EXPECT_DOUBLE_EQ(dense[i].stamp_s, stamps[i]);
+    // 1.5 is equally far from both nodes; ties go to the later one.
+    const common::Rigid2d expected = stamps[i] < 1.5 ? G(stamps[i]) : C * G(stamps[i]);
+    EXPECT_NEAR(dense[i].pose.x(), expected.x(), 1e-9) << "t " << stamps[i];
+    EXPECT_NEAR(dense[i].pose.y(), expected.y(), 1e-9) << "t " << stamps[i];
+    EXPECT_NEAR(common::NormalizeAngle(dense[i].pose.angle_rad() - expected.angle_rad()), 0.0,
+                1e-9)
+        << "t " << stamps[i];
+  }
+}
+
+TEST(DensifyWithOdometryTest, NodeBetweenOdometrySamplesIsInterpolated) {
+  // Straight-line motion, where interpolating odometry is exact.
+  const auto line = [](double t) { return common::Rigid2d(2.0 * t, 0.0, 0.0); };
+  const std::vector<MapBuilder2D::TimedPose2d> nodes = {{1.05, line(1.05)}};
+  const std::vector<sensor::OdometryData> odometry = {{1.0, line(1.0)}, {1.1, line(1.1)},
+                                                      {1.2, line(1.2)}};
+  const auto dense = DensifyWithOdometry(nodes, odometry);
+  ASSERT_EQ(dense.size(), 3u);
+  for (size_t i = 0; i < dense.size(); ++i) {
+    EXPECT_NEAR(dense[i].pose.x(), odometry[i].pose.x(), 1e-9);
+    EXPECT_NEAR(dense[i].pose.y(), 0.0, 1e-12);
+  }
+}
+
+TEST(DensifyWithOdometryTest, WithoutOdometryReturnsNodes) {
+  const std::vector<MapBuilder2D::TimedPose2d> nodes = {{1.0, G(1.0)}, {2.0, G(2.0)}};
+  const auto dense = DensifyWithOdometry(nodes, {});
+  ASSERT_EQ(dense.size(), 2u);
+  EXPECT_DOUBLE_EQ(dense[1].stamp_s, 2.0);
+  EXPECT_DOUBLE_EQ(dense[1].pose.y(), G(2.0).y());
+}
+
+}  // namespace
+}  // namespace pose_graph
+}  // namespace fusemap

@@ -1,0 +1,209 @@
+#include "fusemap/pose_graph/pose_graph_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <vector>
+
+#include "fusemap/common/math.h"
+#include "fusemap/sensor/range_data_builder.h"
+#include "fusemap/sensor/voxel_filter.h"
+
+namespace fusemap {
+namespace pose_graph {
+namespace {
+
+constexpr double kRangeMaxM = 12.0;
+constexpr int kNumBeams = 360;
+constexpr double kArcRadiusM = 2.5;
+constexpr double kStepM = 0.15;
+
+struct Segment {
+  Eigen::Vector2d a, b;
+};
+
+void AddBox(double x0, double y0, double x1, double y1, std::vector<Segment>* walls) {
+  walls->push_back({{x0, y0}, {x1, y0}});
+  walls->push_back({{x1, y0}, {x1, y1}});
+  walls->push_back({{x1, y1}, {x0, y1}});
+  walls->push_back({{x0, y1}, {x0, y0}});
+}
+
+// A 12 m x 8 m room with an island in the middle and two corner boxes.
+std::vector<Segment> Room() {
+  std::vector<Segment> walls;
+  AddBox(0.0, 0.0, 12.0, 8.0, &walls);
+  AddBox(5.5, 3.5, 6.5, 4.5, &walls);
+  AddBox(10.5, 0.5, 11.5, 1.5, &walls);
+  AddBox(1.0, 6.5, 2.0, 7.5, &walls);
+  return walls;
+}
+
+double CastRay(const std::vector<Segment>& walls, const Eigen::Vector2d& p,
+               const Eigen::Vector2d& d) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const Segment& s : walls) {
+    const Eigen::Vector2d e = s.b - s.a;
+    const double denom = d.x() * e.y() - d.y() * e.x();
+    if (std::abs(denom) < 1e-12) continue;
+    const Eigen::Vector2d w = s.a - p;
+    const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
+    const double u = (w.x() * d.y() - w.y() * d.x()) / denom;
+    if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
+  }
+  return best;
+}
+
+// Range data of a 360-beam scan at `pose` (world frame), in the scanner frame.
+sensor::RangeData SimulateRangeData(const std::vector<Segment>& walls,
+                                    const common::Rigid2d& pose) {
+  sensor::LaserScan scan;
+  scan.angle_min_rad = static_cast<float>(-common::kPi);
+  scan.angle_increment_rad = static_cast<float>(2.0 * common::kPi / kNumBeams);
+  scan.range_min_m = 0.1f;
+  scan.range_max_m = static_cast<float>(kRangeMaxM);
+  for (int i = 0; i < kNumBeams; ++i) {
+    const double angle = pose.angle_rad() + scan.angle_min_rad + i * scan.angle_increment_rad;
+    const double r = CastRay(walls, pose.translation(), {std::cos(angle), std::sin(angle)});
+    scan.ranges_m.push_back(r < kRangeMaxM ? static_cast<float>(r)
+                                           : std::numeric_limits<float>::infinity());
+  }
+  return sensor::RangeDataFromScan(scan, sensor::RangeGateOptions());
+}
+
+// Counter-clockwise circle of radius 2.5 m around the island.
+common::Rigid2d TruePose(int i) {
+  const double theta = kStepM * i / kArcRadiusM;
+  return common::Rigid2d(6.0 + kArcRadiusM * std::sin(theta),
+                         4.0 - kArcRadiusM * std::cos(theta), theta);
+}
+
+PoseGraphOptions2D TestOptions(int optimize_every_n_nodes) {
+  PoseGraphOptions2D options;
+  options.optimize_every_n_nodes = optimize_every_n_nodes;
+  options.constraint_builder.sampling_ratio = 1.0;
+  options.constraint_builder.max_constraint_distance_m = 3.0;
+  options.constraint_builder.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
+  options.constraint_builder.fast_correlative_scan_matcher.angular_search_window_rad =
+      common::DegToRad(15.0);
+  return options;
+}
+
+struct RunResult {
+  PoseGraph2D::Stats stats;
+  std::vector<common::Rigid2d> T_map_nodes;
+  std::vector<common::Rigid2d> T_local_nodes;
+  int callbacks = 0;
+  int moved_submaps = 0;
+};
+
+// Stands in for local SLAM with a known drift: every step's estimated motion has 1 % too much
+// translation and 0.1 deg too much yaw, and scans go into the submaps at the drifted poses, so
+// submaps and nodes are consistently wrong, as they are after real local SLAM.
+RunResult RunGraph(int num_nodes, int optimize_every_n_nodes, common::Executor* executor) {
+  const std::vector<Segment> walls = Room();
+  mapping::SubmapsOptions submap_options;
+  submap_options.num_range_data = 10;
+  mapping::ActiveSubmaps2D active(submap_options);
+  sensor::AdaptiveVoxelFilterOptions filter;
+  filter.max_length_m = 0.9f;
+  filter.min_num_points = 100;
+
+  RunResult result;
+  PoseGraph2D graph(TestOptions(optimize_every_n_nodes), executor);
+  graph.AddSubmapsMovedCallback([&result](const std::vector<SubmapMove>& moves) {
+    ++result.callbacks;
+    result.moved_submaps += static_cast<int>(moves.size());
+  });
+  common::Rigid2d T_local_node = TruePose(0);
+  for (int i = 0; i < num_nodes; ++i) {
+    if (i > 0) {
+      const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
+      T_local_node = T_local_node * common::Rigid2d(1.01 * delta.translation(),
+                                                    delta.angle_rad() + common::DegToRad(0.1));
+    }
+    const sensor::RangeData data = SimulateRangeData(walls, TruePose(i));
+    const auto submaps =
+        active.InsertRangeData(sensor::TransformRangeData(data, T_local_node));
+    EXPECT_EQ(graph.AddNode(0.1 * i, T_local_node,
+                            sensor::AdaptiveVoxelFilter(data.returns, filter), submaps),
+              i);
+    result.T_local_nodes.push_back(T_local_node);
+  }
+  graph.RunFinalOptimization();
+  result.stats = graph.stats();
+  result.T_map_nodes = graph.Snapshot()->T_map_nodes;
+  EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
+  return result;
+}
+
+// End-point error after expressing both trajectories relative to their first pose.
+double EndErrorM(const std::vector<common::Rigid2d>& poses) {
+  const common::Rigid2d truth = TruePose(0).inverse() * TruePose(poses.size() - 1);
+  const common::Rigid2d estimate = poses.front().inverse() * poses.back();
+  return (truth.translation() - estimate.translation()).norm();
+}
+
+TEST(PoseGraph2DTest, LocalOnlyKeepsLocalPosesAndSearchesNothing) {
+  common::InlineExecutor executor;
+  const RunResult run = RunGraph(25, 0, &executor);
+  EXPECT_EQ(run.stats.nodes, 25);
+  EXPECT_EQ(run.stats.submaps, 3);  // new submaps start at nodes 0, 10, 20
+  // Nodes 0-9 go into one submap, the rest into two.
+  EXPECT_EQ(run.stats.intra_constraints, 10 + 2 * 15);
+  EXPECT_EQ(run.stats.loop_closure_searches, 0);
+  EXPECT_EQ(run.stats.optimizations, 0);
+  EXPECT_EQ(run.callbacks, 0);
+  ASSERT_EQ(run.T_map_nodes.size(), 25u);
+  for (size_t i = 0; i < run.T_map_nodes.size(); ++i) {
+    // The first node defines T_map_local = identity, so map poses are the local ones.
+    EXPECT_LT((run.T_map_nodes[i].translation() - run.T_local_nodes[i].translation()).norm(), 1e-9);
+  }
+}
+
+TEST(PoseGraph2DTest, LoopClosureReducesDrift) {
+  // 1.1 turns: the end revisits the start.
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::InlineExecutor executor;
+  const RunResult run = RunGraph(num_nodes, 10, &executor);
+  const double drift_m = EndErrorM(run.T_local_nodes);
+  const double optimized_m = EndErrorM(run.T_map_nodes);
+  std::printf("nodes %d, searches %d, loop closures %d, optimisations %d; end error local %.3f m,"
+              " optimised %.3f m\n",
+              num_nodes, run.stats.loop_closure_searches, run.stats.loop_closures_found,
+              run.stats.optimizations, drift_m, optimized_m);
+  EXPECT_GT(run.stats.finished_submaps, 5);
+  EXPECT_GT(run.stats.loop_closures_found, 0);
+  EXPECT_GE(run.stats.optimizations, num_nodes / 10);
+  EXPECT_GT(drift_m, 0.3);
+  EXPECT_LT(optimized_m, 0.08);
+  EXPECT_GT(run.callbacks, 0);
+  EXPECT_GT(run.moved_submaps, 0);
+}
+
+TEST(PoseGraph2DTest, ThreadPoolRunFindsLoopClosures) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::ThreadPool pool(2);
+  const RunResult run = RunGraph(num_nodes, 10, &pool);
+  EXPECT_EQ(run.stats.nodes, num_nodes);
+  EXPECT_GT(run.stats.loop_closures_found, 0);
+  EXPECT_GT(run.stats.optimizations, 0);
+  EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
+}
+
+TEST(PoseGraph2DTest, OptionsValidation) {
+  std::string error;
+  PoseGraphOptions2D options;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
+  options.optimize_every_n_nodes = -1;
+  EXPECT_FALSE(options.IsValid(&error));
+  options.optimize_every_n_nodes = 10;
+  options.matcher_rotation_weight = 0.0;
+  EXPECT_FALSE(options.IsValid(&error));
+}
+
+}  // namespace
+}  // namespace pose_graph
+}  // namespace fusemap
