@@ -23,7 +23,7 @@ namespace {
 
 constexpr char kUsage[] =
     "Usage:\n"
-    "  fusemap_tagscore detect IMAGE... [--family tag36h11] [--no-refine-edges]\n"
+    "  fusemap_tagscore detect IMAGE... [--family tag36h11] [--refine-edges]\n"
     "      Prints `image id cx cy x0 y0 x1 y1 x2 y2 x3 y3` per tag (AprilTag 3 corner order:\n"
     "      counter-clockwise in the image starting bottom-left of the upright tag; pixel\n"
     "      centres at +0.5).\n"
@@ -90,7 +90,7 @@ int Detect(const std::map<std::string, std::string>& flags,
   if (images.empty()) return Fail("detect: no image given\n" + std::string(kUsage));
   ground_truth::TagDetectorOptions options;
   if (flags.count("--family")) options.family = flags.at("--family");
-  if (flags.count("--no-refine-edges")) options.refine_edges = false;
+  if (flags.count("--refine-edges")) options.refine_edges = true;
   std::string error;
   auto detector = ground_truth::TagDetector::Create(options, &error);
   if (detector == nullptr) return Fail("detect: " + error);
@@ -241,7 +241,7 @@ int Main(int argc, char** argv) {
   std::map<std::string, std::string> flags;
   std::vector<std::string> positional;
   std::string error;
-  if (!ParseArgs(argc, argv, {"--help", "--no-refine-edges"}, &flags, &positional, &error)) {
+  if (!ParseArgs(argc, argv, {"--help", "--refine-edges"}, &flags, &positional, &error)) {
     return Fail(error);
   }
   if (flags.count("--help")) {
@@ -249,7 +249,7 @@ int Main(int argc, char** argv) {
     return 0;
   }
   const std::map<std::string, std::vector<std::string>> known = {
-      {"detect", {"--family", "--no-refine-edges"}},
+      {"detect", {"--family", "--refine-edges"}},
       {"groundtruth", {"--log", "--tags", "--out", "--config", "--channel", "--sightings"}},
       {"score", {"--gt", "--est", "--report", "--config", "--sightings", "--measures"}}};
   if (!known.count(command)) return Fail("unknown command '" + command + "'\n" + kUsage);

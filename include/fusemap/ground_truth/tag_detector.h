@@ -26,7 +26,9 @@ struct TagDetectorOptions {
   // 1.0 keeps full resolution for corner accuracy; larger is faster but coarser.
   double quad_decimate = 1.0;
   double quad_sigma = 0.0;
-  bool refine_edges = true;
+  // Off by default: on small (~15 px) tags refinement moves corners by up to a pixel against
+  // the reference detections (../shared/data/apriltag) and loses the smallest tag.
+  bool refine_edges = false;
   int nthreads = 1;
   // Bits the decoder may correct; more than 2 costs a lot of memory and raises false positives.
   int max_hamming = 2;
