@@ -12,7 +12,9 @@
 #include <vector>
 
 #include "fusemap/common/thread_pool.h"
+#include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/trajectory.h"
+#include "fusemap/io/relations_file.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
 #include "fusemap/io/map_writer.h"
@@ -37,6 +39,9 @@ constexpr char kUsage[] =
     "  --threads N         worker threads for loop-closure search and optimisation (default 1:\n"
     "                      reproducible; more is faster but no longer bit-for-bit repeatable)\n"
     "  --quiet             no progress line\n"
+    "  --relations FILE    also print the Kuemmerle et al. (2009) relation error of\n"
+    "                      DIR/trajectory.tum against FILE (as fusemap_eval relations)\n"
+    "  --relations-time-offset S  seconds subtracted from the relation stamps\n"
     "  --help              this text\n"
     "\n"
     "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n";
@@ -46,6 +51,8 @@ struct Args {
   bool loop_closure = true;
   int threads = 1;
   bool quiet = false;
+  std::string relations;
+  double relations_time_offset_s = 0.0;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
@@ -68,6 +75,16 @@ bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
       if (!value(&args->out)) return false;
     } else if (a == "--no-loop-closure") {
       args->loop_closure = false;
+    } else if (a == "--relations") {
+      if (!value(&args->relations)) return false;
+    } else if (a == "--relations-time-offset") {
+      if (!value(&v)) return false;
+      char* end = nullptr;
+      args->relations_time_offset_s = std::strtod(v.c_str(), &end);
+      if (*end != '\0') {
+        *error = "--relations-time-offset takes a number of seconds";
+        return false;
+      }
     } else if (a == "--quiet") {
       args->quiet = true;
     } else if (a == "--threads") {
@@ -256,6 +273,18 @@ int Run(const Args& args) {
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
   std::printf("wrote %strajectory.tum %snodes.tum %smap.pgm %smap.yaml %smap.png\n", out.c_str(),
               out.c_str(), out.c_str(), out.c_str(), out.c_str());
+  if (!args.relations.empty()) {
+    std::vector<eval::Relation> relations;
+    if (!io::ReadRelationsFile(args.relations, args.relations_time_offset_s, &relations, &error)) {
+      std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+      return 1;
+    }
+    const eval::RelationError r = eval::EvaluateRelations(ToTrajectory(dense), relations);
+    std::printf("relations: used=%d skipped=%d trans_mean_m=%.4f trans_std_m=%.4f "
+                "rot_mean_deg=%.3f rot_std_deg=%.3f\n",
+                r.count_used, r.count_skipped, r.trans_m.mean, r.trans_m.std, r.rot_deg.mean,
+                r.rot_deg.std);
+  }
   const double duration_s = last_stamp_s - first_stamp_s;
   std::printf("scans=%d wall_s=%.3f realtime_factor=%.1f\n", scans, wall_s,
               wall_s > 0 ? duration_s / wall_s : 0.0);
