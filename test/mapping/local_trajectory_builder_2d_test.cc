@@ -8,74 +8,18 @@
 #include <vector>
 
 #include "fusemap/common/math.h"
+#include "testing/synthetic_room.h"
 
 namespace fusemap {
 namespace mapping {
 namespace {
 
-constexpr double kRangeMaxM = 12.0;
-constexpr int kNumBeams = 360;
-
-struct Segment {
-  Eigen::Vector2d a, b;
-};
-
-void AddBox(double x0, double y0, double x1, double y1, std::vector<Segment>* walls) {
-  walls->push_back({{x0, y0}, {x1, y0}});
-  walls->push_back({{x1, y0}, {x1, y1}});
-  walls->push_back({{x1, y1}, {x0, y1}});
-  walls->push_back({{x0, y1}, {x0, y0}});
-}
-
-// A 12 m x 8 m room with an island in the middle and two corner boxes (asymmetric, so that
-// scan matching has a unique answer).
-std::vector<Segment> Room() {
-  std::vector<Segment> walls;
-  AddBox(0.0, 0.0, 12.0, 8.0, &walls);
-  AddBox(5.5, 3.5, 6.5, 4.5, &walls);
-  AddBox(10.5, 0.5, 11.5, 1.5, &walls);
-  AddBox(1.0, 6.5, 2.0, 7.5, &walls);
-  return walls;
-}
-
-// Nearest intersection of the ray p + t d (t > 0) with any wall, or infinity.
-double CastRay(const std::vector<Segment>& walls, const Eigen::Vector2d& p,
-               const Eigen::Vector2d& d) {
-  double best = std::numeric_limits<double>::infinity();
-  for (const Segment& s : walls) {
-    const Eigen::Vector2d e = s.b - s.a;
-    const double denom = d.x() * e.y() - d.y() * e.x();
-    if (std::abs(denom) < 1e-12) continue;
-    const Eigen::Vector2d w = s.a - p;
-    const double t = (w.x() * e.y() - w.y() * e.x()) / denom;
-    const double u = (w.x() * d.y() - w.y() * d.x()) / denom;
-    if (t > 1e-9 && u >= 0.0 && u <= 1.0) best = std::min(best, t);
-  }
-  return best;
-}
-
-sensor::LaserScan SimulateScan(const std::vector<Segment>& walls, const common::Rigid2d& pose,
-                               double stamp_s) {
-  sensor::LaserScan scan;
-  scan.stamp_s = stamp_s;
-  scan.angle_min_rad = static_cast<float>(-common::kPi);
-  scan.angle_increment_rad = static_cast<float>(2.0 * common::kPi / kNumBeams);
-  scan.range_min_m = 0.1f;
-  scan.range_max_m = static_cast<float>(kRangeMaxM);
-  for (int i = 0; i < kNumBeams; ++i) {
-    const double angle = pose.angle_rad() + scan.angle_min_rad + i * scan.angle_increment_rad;
-    const double r = CastRay(walls, pose.translation(), {std::cos(angle), std::sin(angle)});
-    scan.ranges_m.push_back(r < kRangeMaxM ? static_cast<float>(r)
-                                           : std::numeric_limits<float>::infinity());
-  }
-  return scan;
-}
+using test_world::Room;
+using test_world::Segment;
+using test_world::SimulateScan;
 
 // Counter-clockwise arc of radius 2.5 m around the island: 0.1 m and ~2.3 deg per step.
-common::Rigid2d TruePose(int i) {
-  const double theta = 0.1 * i / 2.5;
-  return common::Rigid2d(6.0 + 2.5 * std::sin(theta), 4.0 - 2.5 * std::cos(theta), theta);
-}
+common::Rigid2d TruePose(int i) { return test_world::ArcPose(i, 0.1); }
 
 LocalTrajectoryBuilderOptions2D TestOptions() {
   LocalTrajectoryBuilderOptions2D options;
