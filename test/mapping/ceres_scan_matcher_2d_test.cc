@@ -9,76 +9,19 @@
 
 #include "fusemap/mapping/scan_matching/real_time_correlative_scan_matcher_2d.h"
 
+#include "testing/wall_grid.h"
+
 namespace fusemap {
 namespace mapping {
 namespace {
 
-struct Segment {
-  Eigen::Vector2d a;
-  Eigen::Vector2d b;
-};
+using test_world::Segment;
 
-// A 7.95 m x 5.95 m room with a 1 m pillar; wall lines pass through cell centres.
-std::vector<Segment> RoomWalls() {
-  const auto box = [](double x0, double y0, double x1, double y1) {
-    return std::vector<Segment>{{{x0, y0}, {x1, y0}}, {{x1, y0}, {x1, y1}},
-                                {{x1, y1}, {x0, y1}}, {{x0, y1}, {x0, y0}}};
-  };
-  std::vector<Segment> walls = box(-3.975, -2.975, 3.975, 2.975);
-  const std::vector<Segment> pillar = box(1.025, 0.525, 2.025, 1.525);
-  walls.insert(walls.end(), pillar.begin(), pillar.end());
-  return walls;
-}
-
-double DistanceToSegment(const Eigen::Vector2d& p, const Segment& s) {
-  const Eigen::Vector2d ab = s.b - s.a;
-  const double t = std::clamp((p - s.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (s.a + t * ab - p).norm();
-}
-
-// Walls drawn with a Gaussian profile (sigma one cell), as many insertions would leave them.
-ProbabilityGrid MakeRoomGrid() {
-  MapLimits limits;
-  limits.resolution_m = 0.05;
-  limits.origin_m = Eigen::Vector2d(-5.0, -4.0);
-  limits.num_x_cells = 200;
-  limits.num_y_cells = 160;
-  ProbabilityGrid grid(limits);
-  const std::vector<Segment> walls = RoomWalls();
-  for (int y = 0; y < limits.num_y_cells; ++y) {
-    for (int x = 0; x < limits.num_x_cells; ++x) {
-      const Eigen::Array2i cell(x, y);
-      double d = std::numeric_limits<double>::max();
-      for (const Segment& s : walls) d = std::min(d, DistanceToSegment(limits.GetCellCenter(cell), s));
-      grid.SetProbability(cell, static_cast<float>(0.1 + 0.8 * std::exp(-d * d / (2 * 0.05 * 0.05))));
-    }
-  }
-  return grid;
-}
+ProbabilityGrid MakeRoomGrid() { return test_world::MakeSmallRoomGrid(); }
 
 // Ray-cast returns (in the tracking frame) of `num_beams` beams from T_grid_tracking.
 sensor::PointCloud2d CastScan(const common::Rigid2d& T_grid_tracking, int num_beams) {
-  const std::vector<Segment> walls = RoomWalls();
-  sensor::PointCloud2d cloud;
-  for (int i = 0; i < num_beams; ++i) {
-    const double beam_rad = 2.0 * common::kPi * i / num_beams;
-    const Eigen::Vector2d dir = T_grid_tracking.rotation() * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad));
-    const Eigen::Vector2d o = T_grid_tracking.translation();
-    double best_range_m = 10.0;
-    for (const Segment& s : walls) {
-      const Eigen::Vector2d e = s.b - s.a;
-      const double denom = dir.x() * e.y() - dir.y() * e.x();
-      if (std::abs(denom) < 1e-12) continue;
-      const Eigen::Vector2d w = s.a - o;
-      const double range_m = (w.x() * e.y() - w.y() * e.x()) / denom;
-      const double u = (w.x() * dir.y() - w.y() * dir.x()) / denom;
-      if (range_m > 0.0 && u >= 0.0 && u <= 1.0) best_range_m = std::min(best_range_m, range_m);
-    }
-    if (best_range_m < 10.0) {
-      cloud.push_back((best_range_m * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad))).cast<float>());
-    }
-  }
-  return cloud;
+  return test_world::CastCloud(test_world::SmallRoomWalls(), T_grid_tracking, num_beams, 10.0);
 }
 
 // With Cartographer's default weights (occupied 1, translation 10, rotation 40) the priors

@@ -10,6 +10,8 @@
 #include <random>
 #include <vector>
 
+#include "testing/wall_grid.h"
+
 namespace fusemap {
 namespace mapping {
 namespace {
@@ -166,10 +168,7 @@ TEST(FastCorrelativeScanMatcher2DTest, SlightlyBetterLeafInLaterSubtreeIsFound) 
   EXPECT_NEAR(score, PrecomputationScore(expected.best_sum, 16), 1e-12);
 }
 
-struct Segment {
-  Eigen::Vector2d a;
-  Eigen::Vector2d b;
-};
+using test_world::Segment;
 
 // Outer walls of a 20 m x 20 m hall plus random walls and pillars: unique enough to localise.
 std::vector<Segment> MakeStructuredWorld(unsigned seed) {
@@ -188,51 +187,17 @@ std::vector<Segment> MakeStructuredWorld(unsigned seed) {
   return segments;
 }
 
-double DistanceToSegment(const Eigen::Vector2d& p, const Segment& s) {
-  const Eigen::Vector2d ab = s.b - s.a;
-  const double t = std::clamp((p - s.a).dot(ab) / ab.squaredNorm(), 0.0, 1.0);
-  return (s.a + t * ab - p).norm();
-}
-
 ProbabilityGrid DrawWorld(const std::vector<Segment>& segments) {
   MapLimits limits;
   limits.resolution_m = 0.05;
   limits.num_x_cells = 400;
   limits.num_y_cells = 400;
-  ProbabilityGrid grid(limits);
-  for (int y = 0; y < limits.num_y_cells; ++y) {
-    for (int x = 0; x < limits.num_x_cells; ++x) {
-      const Eigen::Array2i cell(x, y);
-      double d = std::numeric_limits<double>::max();
-      for (const Segment& s : segments) d = std::min(d, DistanceToSegment(limits.GetCellCenter(cell), s));
-      if (d < 0.3) grid.SetProbability(cell, static_cast<float>(0.1 + 0.8 * std::exp(-d * d / (2 * 0.05 * 0.05))));
-    }
-  }
-  return grid;
+  return test_world::DrawWalls(limits, segments, /*cutoff_m=*/0.3);
 }
 
 sensor::PointCloud2d CastScan(const std::vector<Segment>& segments, const common::Rigid2d& T_grid_tracking,
                               int num_beams, double range_max_m) {
-  sensor::PointCloud2d cloud;
-  for (int i = 0; i < num_beams; ++i) {
-    const double beam_rad = 2.0 * common::kPi * i / num_beams;
-    const Eigen::Vector2d dir = T_grid_tracking.rotation() * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad));
-    const Eigen::Vector2d o = T_grid_tracking.translation();
-    double best_m = range_max_m;
-    for (const Segment& s : segments) {
-      const Eigen::Vector2d e = s.b - s.a;
-      const double denom = dir.x() * e.y() - dir.y() * e.x();
-      if (std::abs(denom) < 1e-12) continue;
-      const Eigen::Vector2d w = s.a - o;
-      const double range_m = (w.x() * e.y() - w.y() * e.x()) / denom;
-      const double u = (w.x() * dir.y() - w.y() * dir.x()) / denom;
-      if (range_m > 0.0 && u >= 0.0 && u <= 1.0) best_m = std::min(best_m, range_m);
-    }
-    if (best_m < range_max_m) {
-      cloud.push_back((best_m * Eigen::Vector2d(std::cos(beam_rad), std::sin(beam_rad))).cast<float>());
-    }
-  }
-  return cloud;
+  return test_world::CastCloud(segments, T_grid_tracking, num_beams, range_max_m);
 }
 
 TEST(FastCorrelativeScanMatcher2DTest, FindsScanDisplacedByTwoMetresAndTwentyDegrees) {
