@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
-#include <queue>
 #include <sstream>
 
 #include "fusemap/io/lcm_conversions.h"
@@ -279,9 +278,6 @@ struct Pending {
   double stamp_s;
   int64_t seq;
   CarmenRecord record;
-  bool operator>(const Pending& other) const {
-    return stamp_s != other.stamp_s ? stamp_s > other.stamp_s : seq > other.seq;
-  }
 };
 
 }  // namespace

@@ -117,7 +117,7 @@ int PoseGraph2D::AddNode(
             for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
               ScheduleSearchLocked(n, s);
             }
-            searches.swap(pending_searches_);
+            searches.swap(pending_tasks_);
           }
           for (auto& search : searches) executor_->Schedule(std::move(search));
         });
@@ -131,10 +131,10 @@ int PoseGraph2D::AddNode(
     if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes && !optimization_running_) {
       nodes_since_optimization_ = 0;
       optimization_running_ = true;
-      pending_searches_.push_back([this] { RunOptimization(options_.optimization.max_num_iterations); });
+      pending_tasks_.push_back([this] { RunOptimization(options_.optimization.max_num_iterations); });
     }
-    tasks.insert(tasks.end(), pending_searches_.begin(), pending_searches_.end());
-    pending_searches_.clear();
+    tasks.insert(tasks.end(), pending_tasks_.begin(), pending_tasks_.end());
+    pending_tasks_.clear();
   }
   // Scheduled outside the lock: an inline executor runs the task right here.
   for (auto& task : tasks) executor_->Schedule(std::move(task));
@@ -154,7 +154,7 @@ void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   if (!submap_data.sampler.Pulse()) return;
   auto matcher = submap_data.matcher;
   auto cloud = std::make_shared<const sensor::PointCloud2d>(node_data.cloud);
-  pending_searches_.push_back([this, matcher, cloud, T_submap_node, node, submap] {
+  pending_tasks_.push_back([this, matcher, cloud, T_submap_node, node, submap] {
     const auto start = std::chrono::steady_clock::now();
     double score = 0.0;
     std::optional<Constraint2D> constraint = matcher->Match(T_submap_node, *cloud, &score);

@@ -160,13 +160,20 @@ int Run(const Args& args) {
   const auto start = std::chrono::steady_clock::now();
   auto last_progress = start;
   io::LogEvent event;
+  // Malformed messages are counted and dropped; the first one is described so the cause shows.
+  const auto drop_bad_message = [&] {
+    if (bad_messages++ == 0) {
+      std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(),
+                   error.c_str());
+    }
+  };
   while (reader.Next(&event)) {
     const int size = static_cast<int>(event.data.size());
     double stamp_s = 0.0;
     if (event.channel == config.channels.lidar) {
       sensor::LaserScan scan;
       if (!io::DecodeLaserScan(event.data.data(), size, config.lidar, &scan, &error)) {
-        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        drop_bad_message();
         continue;
       }
       stamp_s = scan.stamp_s;
@@ -178,7 +185,7 @@ int Run(const Args& args) {
     } else if (event.channel == config.channels.odometry) {
       sensor::OdometryData data;
       if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) {
-        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        drop_bad_message();
         continue;
       }
       stamp_s = data.stamp_s;
@@ -191,7 +198,7 @@ int Run(const Args& args) {
     } else if (event.channel == config.channels.imu) {
       sensor::ImuData data;
       if (!io::DecodeImu(event.data.data(), size, &data, &error)) {
-        if (bad_messages++ == 0) std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(), error.c_str());
+        drop_bad_message();
         continue;
       }
       stamp_s = data.stamp_s;

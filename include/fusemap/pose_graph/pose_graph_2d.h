@@ -122,7 +122,7 @@ class PoseGraph2D {
   Stats stats_;                                 // guarded by mutex_
   std::vector<SubmapsMovedCallback> callbacks_;  // guarded by mutex_
   // Work found while holding mutex_, handed to the executor once it is released.
-  std::vector<std::function<void()>> pending_searches_;  // guarded by mutex_
+  std::vector<std::function<void()>> pending_tasks_;  // guarded by mutex_
 };
 
 }  // namespace pose_graph
