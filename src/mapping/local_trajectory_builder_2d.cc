@@ -1,5 +1,8 @@
 #include "fusemap/mapping/local_trajectory_builder_2d.h"
 
+#include <cassert>
+#include <utility>
+
 namespace fusemap {
 namespace mapping {
 
@@ -69,6 +72,32 @@ LocalTrajectoryBuilder2D::LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderO
       ceres_matcher_(options.ceres_scan_matcher),
       extrapolator_(options.pose_queue_duration_s) {}
 
+LocalTrajectoryBuilderState2D LocalTrajectoryBuilder2D::ExportState() const {
+  LocalTrajectoryBuilderState2D state;
+  state.extrapolator = extrapolator_.ExportState();
+  state.last_scan_stamp_s = last_scan_stamp_s_;
+  state.last_insertion_stamp_s = last_insertion_stamp_s_;
+  state.T_local_last_insertion = T_local_last_insertion_;
+  state.stats = stats_;
+  return state;
+}
+
+void LocalTrajectoryBuilder2D::RestoreState(const LocalTrajectoryBuilderState2D& state,
+                                            std::vector<std::shared_ptr<Submap2D>> active_submaps) {
+  assert(stats_.scans == 0 && active_submaps_.submaps().empty());
+  active_submaps_.Restore(std::move(active_submaps));
+  extrapolator_ = PoseExtrapolator2D(options_.pose_queue_duration_s, state.extrapolator);
+  last_scan_stamp_s_ = state.last_scan_stamp_s;
+  last_insertion_stamp_s_ = state.last_insertion_stamp_s;
+  T_local_last_insertion_ = state.T_local_last_insertion;
+  stats_ = state.stats;
+  // The motion filter only remembers the last scan it let through; replaying that one scan
+  // puts it back in the same state as far as later decisions go.
+  if (stats_.inserted > 0) {
+    motion_filter_.IsSimilar(last_insertion_stamp_s_, T_local_last_insertion_);
+  }
+}
+
 void LocalTrajectoryBuilder2D::AddOdometry(const sensor::OdometryData& odometry) {
   if (!options_.use_odometry) return;
   if (!extrapolator_.AddOdometry(odometry)) ++stats_.odometry_rejected;
@@ -131,6 +160,8 @@ std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D
   insertion.filtered_cloud =
       sensor::AdaptiveVoxelFilter(in_tracking.returns, options_.loop_closure_adaptive_voxel_filter);
   result.insertion = std::move(insertion);
+  last_insertion_stamp_s_ = scan.stamp_s;
+  T_local_last_insertion_ = result.T_local_tracking;
   ++stats_.inserted;
   return result;
 }

@@ -15,6 +15,26 @@ constexpr double kMaxOdometryExtrapolationS = 0.5;
 PoseExtrapolator2D::PoseExtrapolator2D(double pose_queue_duration_s)
     : pose_queue_duration_s_(pose_queue_duration_s) {}
 
+PoseExtrapolator2D::PoseExtrapolator2D(double pose_queue_duration_s,
+                                       const PoseExtrapolatorState2D& state)
+    : pose_queue_duration_s_(pose_queue_duration_s),
+      odometry_(state.odometry.begin(), state.odometry.end()),
+      imu_(state.imu.begin(), state.imu.end()),
+      linear_velocity_mps_(state.linear_velocity_mps),
+      angular_velocity_radps_(state.angular_velocity_radps) {
+  for (const auto& p : state.poses) poses_.push_back({p.stamp_s, p.pose});
+}
+
+PoseExtrapolatorState2D PoseExtrapolator2D::ExportState() const {
+  PoseExtrapolatorState2D state;
+  for (const auto& p : poses_) state.poses.push_back({p.stamp_s, p.pose});
+  state.odometry.assign(odometry_.begin(), odometry_.end());
+  state.imu.assign(imu_.begin(), imu_.end());
+  state.linear_velocity_mps = linear_velocity_mps_;
+  state.angular_velocity_radps = angular_velocity_radps_;
+  return state;
+}
+
 void PoseExtrapolator2D::AddPose(double stamp_s, const common::Rigid2d& T_local_tracking) {
   if (!poses_.empty() && stamp_s <= poses_.back().stamp_s) {
     // Same-time poses replace the previous estimate rather than producing an infinite velocity.

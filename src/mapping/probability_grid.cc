@@ -1,6 +1,7 @@
 #include "fusemap/mapping/probability_grid.h"
 
 #include <cassert>
+#include <utility>
 
 namespace fusemap {
 namespace mapping {
@@ -12,6 +13,12 @@ ProbabilityGrid::ProbabilityGrid(const MapLimits& limits)
     : limits_(limits),
       cells_(static_cast<size_t>(limits.num_x_cells) * limits.num_y_cells, kUnknownValue) {
   assert(limits.num_x_cells >= 0 && limits.num_y_cells >= 0 && limits.resolution_m > 0);
+}
+
+ProbabilityGrid::ProbabilityGrid(const MapLimits& limits, std::vector<uint16_t> cells)
+    : limits_(limits), cells_(std::move(cells)) {
+  assert(limits.num_x_cells >= 0 && limits.num_y_cells >= 0 && limits.resolution_m > 0);
+  assert(cells_.size() == static_cast<size_t>(limits.num_x_cells) * limits.num_y_cells);
 }
 
 float ProbabilityGrid::GetProbability(const Eigen::Array2i& cell) const {

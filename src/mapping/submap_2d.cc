@@ -1,6 +1,7 @@
 #include "fusemap/mapping/submap_2d.h"
 
 #include <cassert>
+#include <utility>
 
 namespace fusemap {
 namespace mapping {
@@ -47,6 +48,22 @@ Submap2D::Submap2D(const Eigen::Vector2f& origin_in_local_m, double resolution_m
     : T_local_submap_(common::Rigid2d::Translation(origin_in_local_m.cast<double>())),
       grid_(InitialLimits(origin_in_local_m, resolution_m)) {}
 
+Submap2D::Submap2D(const SubmapState2D& state)
+    : T_local_submap_(state.T_local_submap),
+      grid_(state.limits, state.cells),
+      num_range_data_(state.num_range_data),
+      finished_(state.finished) {}
+
+SubmapState2D Submap2D::ExportState() const {
+  SubmapState2D state;
+  state.T_local_submap = T_local_submap_;
+  state.limits = grid_.limits();
+  state.cells = grid_.cells();
+  state.num_range_data = num_range_data_;
+  state.finished = finished_;
+  return state;
+}
+
 void Submap2D::InsertRangeData(const sensor::RangeData& range_data_in_local,
                                const RangeDataInserter2D& inserter) {
   assert(!finished_);
@@ -80,6 +97,11 @@ std::vector<std::shared_ptr<const Submap2D>> ActiveSubmaps2D::InsertRangeData(
 
 std::vector<std::shared_ptr<const Submap2D>> ActiveSubmaps2D::submaps() const {
   return std::vector<std::shared_ptr<const Submap2D>>(submaps_.begin(), submaps_.end());
+}
+
+void ActiveSubmaps2D::Restore(std::vector<std::shared_ptr<Submap2D>> submaps) {
+  assert(submaps_.empty() && submaps.size() <= 2);
+  submaps_ = std::move(submaps);
 }
 
 void ActiveSubmaps2D::AddSubmap(const Eigen::Vector2f& origin_in_local_m) {

@@ -1,6 +1,8 @@
 #include "fusemap/pose_graph/map_builder_2d.h"
 
 #include <algorithm>
+#include <cassert>
+#include <utility>
 
 namespace fusemap {
 namespace pose_graph {
@@ -23,6 +25,42 @@ std::optional<common::Rigid2d> MapBuilder2D::AddScan(const sensor::LaserScan& sc
                         result->insertion->filtered_cloud, result->insertion->insertion_submaps);
   }
   return pose_graph_.T_map_local() * result->T_local_tracking;
+}
+
+MapBuilderState2D MapBuilder2D::ExportState() const {
+  MapBuilderState2D state;
+  std::vector<std::shared_ptr<const mapping::Submap2D>> submaps;
+  state.pose_graph = pose_graph_.ExportState(&submaps);
+  state.local_slam = local_.ExportState();
+  // Grids are copied outside the pose graph's lock: finished submaps are immutable and the
+  // unfinished ones are only written by AddScan, on this thread.
+  state.submaps.reserve(submaps.size());
+  for (const auto& submap : submaps) state.submaps.push_back(submap->ExportState());
+  for (const auto& active : local_.active_submaps()) {
+    const auto it = std::find(submaps.begin(), submaps.end(), active);
+    // Every submap local SLAM starts reaches the pose graph with the scan that started it.
+    assert(it != submaps.end());
+    state.active_submaps.push_back(static_cast<int>(it - submaps.begin()));
+  }
+  return state;
+}
+
+std::unique_ptr<MapBuilder2D> MapBuilder2D::Restore(const MapBuilderOptions2D& options,
+                                                    common::Executor* executor,
+                                                    const MapBuilderState2D& state) {
+  auto builder = std::make_unique<MapBuilder2D>(options, executor);
+  std::vector<std::shared_ptr<mapping::Submap2D>> submaps;
+  submaps.reserve(state.submaps.size());
+  for (const auto& submap : state.submaps) {
+    submaps.push_back(std::make_shared<mapping::Submap2D>(submap));
+  }
+  std::vector<std::shared_ptr<mapping::Submap2D>> active;
+  for (int index : state.active_submaps) active.push_back(submaps.at(index));
+  builder->local_.RestoreState(state.local_slam, std::move(active));
+  builder->pose_graph_.RestoreState(
+      state.pose_graph,
+      std::vector<std::shared_ptr<const mapping::Submap2D>>(submaps.begin(), submaps.end()));
+  return builder;
 }
 
 std::vector<MapBuilder2D::TimedPose2d> MapBuilder2D::NodePoses() const {

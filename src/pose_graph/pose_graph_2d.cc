@@ -106,21 +106,7 @@ int PoseGraph2D::AddNode(
         submaps_[s].finished = true;
         ++stats_.finished_submaps;
         if (options_.optimize_every_n_nodes == 0) continue;
-        tasks.push_back([this, s, submap] {
-          const auto start = std::chrono::steady_clock::now();
-          auto matcher = std::make_shared<const LoopClosureMatcher2D>(submap, options_.constraint_builder);
-          std::vector<std::function<void()>> searches;
-          {
-            std::lock_guard<std::mutex> lock(mutex_);
-            stats_.precomputation_s += SecondsSince(start);
-            submaps_[s].matcher = matcher;
-            for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) {
-              ScheduleSearchLocked(n, s);
-            }
-            searches.swap(pending_tasks_);
-          }
-          for (auto& search : searches) executor_->Schedule(std::move(search));
-        });
+        tasks.push_back(MakeMatcherTask(s, submap, true, {}));
       }
     }
     if (options_.optimize_every_n_nodes == 0) return node;
@@ -151,22 +137,52 @@ void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   if (T_submap_node.translation().norm() > options_.constraint_builder.max_constraint_distance_m) {
     return;
   }
+  ++submap_data.sampler_pulses;
   if (!submap_data.sampler.Pulse()) return;
-  auto matcher = submap_data.matcher;
-  auto cloud = std::make_shared<const sensor::PointCloud2d>(node_data.cloud);
-  pending_tasks_.push_back([this, matcher, cloud, T_submap_node, node, submap] {
+  QueueSearchLocked({node, submap, T_submap_node});
+}
+
+void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
+  const std::uint64_t id = next_search_id_++;
+  searches_in_flight_[id] = search;
+  auto matcher = submaps_[search.submap].matcher;
+  auto cloud = std::make_shared<const sensor::PointCloud2d>(nodes_[search.node].cloud);
+  pending_tasks_.push_back([this, matcher, cloud, search, id] {
     const auto start = std::chrono::steady_clock::now();
     double score = 0.0;
-    std::optional<Constraint2D> constraint = matcher->Match(T_submap_node, *cloud, &score);
+    std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
     std::lock_guard<std::mutex> lock(mutex_);
+    searches_in_flight_.erase(id);
     stats_.loop_closure_search_s += SecondsSince(start);
     ++stats_.loop_closure_searches;
     if (!constraint) return;
-    constraint->submap = submap;
-    constraint->node = node;
+    constraint->submap = search.submap;
+    constraint->node = search.node;
     constraints_.push_back(*constraint);
     ++stats_.loop_closures_found;
   });
+}
+
+std::function<void()> PoseGraph2D::MakeMatcherTask(
+    int s, std::shared_ptr<const mapping::Submap2D> submap, bool search_all_nodes,
+    std::vector<PendingSearch2D> searches) {
+  return [this, s, submap, search_all_nodes, searches] {
+    const auto start = std::chrono::steady_clock::now();
+    auto matcher =
+        std::make_shared<const LoopClosureMatcher2D>(submap, options_.constraint_builder);
+    std::vector<std::function<void()>> tasks;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stats_.precomputation_s += SecondsSince(start);
+      submaps_[s].matcher = matcher;
+      for (const auto& search : searches) QueueSearchLocked(search);
+      if (search_all_nodes) {
+        for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) ScheduleSearchLocked(n, s);
+      }
+      tasks.swap(pending_tasks_);
+    }
+    for (auto& task : tasks) executor_->Schedule(std::move(task));
+  };
 }
 
 void PoseGraph2D::RunOptimization(int max_iterations) {

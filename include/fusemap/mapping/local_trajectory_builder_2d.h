@@ -50,6 +50,8 @@ struct LocalTrajectoryBuilderOptions2D {
 // use_odometry, use_imu, pose_queue_duration_s.
 LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader);
 
+struct LocalTrajectoryBuilderState2D;
+
 // Local SLAM (Hess et al. 2016, Sec. IV): each scan is matched against the older active
 // submap starting from the extrapolated pose, then inserted into both active submaps unless
 // the motion filter finds it too close to the last inserted one. Poses are T_local_tracking
@@ -92,6 +94,13 @@ class LocalTrajectoryBuilder2D {
     return active_submaps_.submaps();
   }
 
+  // The state apart from the active submaps (see active_submaps()), for checkpoints.
+  LocalTrajectoryBuilderState2D ExportState() const;
+  // Continues exactly where the exporting builder stopped; only on a builder that has not
+  // seen any data yet. `active_submaps` are the restored active_submaps(), oldest first.
+  void RestoreState(const LocalTrajectoryBuilderState2D& state,
+                    std::vector<std::shared_ptr<Submap2D>> active_submaps);
+
  private:
   common::Rigid2d ScanMatch(const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
                             double* score);
@@ -103,7 +112,19 @@ class LocalTrajectoryBuilder2D {
   CeresScanMatcher2D ceres_matcher_;
   PoseExtrapolator2D extrapolator_;
   double last_scan_stamp_s_ = -1e300;
+  // The last scan the motion filter let through (meaningful once stats_.inserted > 0).
+  double last_insertion_stamp_s_ = 0.0;
+  common::Rigid2d T_local_last_insertion_;
   Stats stats_;
+};
+
+// Everything LocalTrajectoryBuilder2D holds besides its options and active submaps.
+struct LocalTrajectoryBuilderState2D {
+  PoseExtrapolatorState2D extrapolator;
+  double last_scan_stamp_s = -1e300;
+  double last_insertion_stamp_s = 0.0;
+  common::Rigid2d T_local_last_insertion;
+  LocalTrajectoryBuilder2D::Stats stats;
 };
 
 }  // namespace mapping

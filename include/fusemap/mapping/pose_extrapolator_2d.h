@@ -2,12 +2,26 @@
 #define FUSEMAP_MAPPING_POSE_EXTRAPOLATOR_2D_H_
 
 #include <deque>
+#include <vector>
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/sensor/sensor_types.h"
 
 namespace fusemap {
 namespace mapping {
+
+// Everything a PoseExtrapolator2D holds, as plain values (checkpoints).
+struct PoseExtrapolatorState2D {
+  struct TimedPose {
+    double stamp_s = 0.0;
+    common::Rigid2d pose;
+  };
+  std::vector<TimedPose> poses;  // time-ordered
+  std::vector<sensor::OdometryData> odometry;
+  std::vector<sensor::ImuData> imu;
+  Eigen::Vector2d linear_velocity_mps = Eigen::Vector2d::Zero();
+  double angular_velocity_radps = 0.0;
+};
 
 // Predicts the robot pose at a future time from the last scan-matched pose. Odometry, when
 // present, gives the motion since that pose (interpolated at both ends, not the nearest
@@ -17,6 +31,10 @@ namespace mapping {
 class PoseExtrapolator2D {
  public:
   explicit PoseExtrapolator2D(double pose_queue_duration_s = 0.5);
+  // Continues exactly where the extrapolator that exported `state` stopped.
+  PoseExtrapolator2D(double pose_queue_duration_s, const PoseExtrapolatorState2D& state);
+
+  PoseExtrapolatorState2D ExportState() const;
 
   // Scan-matched pose of the tracking frame in the local frame.
   void AddPose(double stamp_s, const common::Rigid2d& T_local_tracking);

@@ -17,8 +17,13 @@ namespace mapping {
 class ProbabilityGrid {
  public:
   explicit ProbabilityGrid(const MapLimits& limits);
+  // A grid with the given cell values (checkpoint restore): one per cell, row-major as
+  // MapLimits::FlatIndex, none carrying kUpdateMarker.
+  ProbabilityGrid(const MapLimits& limits, std::vector<uint16_t> cells);
 
   const MapLimits& limits() const { return limits_; }
+  // Raw cell values, row-major as MapLimits::FlatIndex (kUnknownValue for unknown cells).
+  const std::vector<uint16_t>& cells() const { return cells_; }
 
   // kMinProbability for unknown cells and for cells outside the grid.
   float GetProbability(const Eigen::Array2i& cell) const;

@@ -27,6 +27,15 @@ struct SubmapsOptions {
 // Reads num_range_data, resolution_m and the child mapping `range_data_inserter`.
 SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader);
 
+// Everything a submap holds, as plain values (checkpoints).
+struct SubmapState2D {
+  common::Rigid2d T_local_submap;
+  MapLimits limits;
+  std::vector<uint16_t> cells;  // as ProbabilityGrid::cells()
+  int num_range_data = 0;
+  bool finished = false;
+};
+
 // A local occupancy map built from consecutive range data. As in Cartographer, the grid is
 // expressed in the local SLAM frame (cell coordinates are local coordinates) and
 // T_local_submap is a pure translation to the origin at creation. Once finished, a submap is
@@ -35,6 +44,8 @@ class Submap2D {
  public:
   // Starts an empty grid of 100 x 100 cells centred on `origin_in_local_m`.
   Submap2D(const Eigen::Vector2f& origin_in_local_m, double resolution_m);
+  // Restores a submap exactly as ExportState() saw it; `state.cells` must match the limits.
+  explicit Submap2D(const SubmapState2D& state);
 
   Submap2D(const Submap2D&) = delete;
   Submap2D& operator=(const Submap2D&) = delete;
@@ -48,6 +59,8 @@ class Submap2D {
   void InsertRangeData(const sensor::RangeData& range_data_in_local,
                        const RangeDataInserter2D& inserter);
   void Finish();
+
+  SubmapState2D ExportState() const;
 
  private:
   common::Rigid2d T_local_submap_;
@@ -76,6 +89,10 @@ class ActiveSubmaps2D {
 
   // The current active submaps, oldest first (empty before the first insertion).
   std::vector<std::shared_ptr<const Submap2D>> submaps() const;
+
+  // Replaces the (empty) set of active submaps with restored ones, oldest first (at most two;
+  // with two, the front one is the older and more complete one, as InsertRangeData leaves it).
+  void Restore(std::vector<std::shared_ptr<Submap2D>> submaps);
 
  private:
   void AddSubmap(const Eigen::Vector2f& origin_in_local_m);

@@ -1,6 +1,7 @@
 #ifndef FUSEMAP_POSE_GRAPH_MAP_BUILDER_2D_H_
 #define FUSEMAP_POSE_GRAPH_MAP_BUILDER_2D_H_
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -8,6 +9,7 @@
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/mapping/local_trajectory_builder_2d.h"
+#include "fusemap/pose_graph/map_builder_state_2d.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 
 namespace fusemap {
@@ -50,6 +52,18 @@ class MapBuilder2D {
   const mapping::LocalTrajectoryBuilder2D& local_slam() const { return local_; }
   PoseGraph2D& pose_graph() { return pose_graph_; }
   const PoseGraph2D& pose_graph() const { return pose_graph_; }
+
+  // A consistent snapshot of everything mapped so far (checkpoints). Call it from the thread
+  // that feeds the builder (it copies the active submaps that AddScan writes); the global
+  // optimiser may keep running meanwhile: its work in flight is recorded, not waited for.
+  MapBuilderState2D ExportState() const;
+  // A builder that continues exactly where the one that exported `state` stopped: same
+  // submaps, graph, loop-closure sampling and local SLAM state (extrapolator included), so
+  // with an InlineExecutor it produces the same poses as the original would have.
+  // `state` must satisfy MapBuilderState2D's invariants.
+  static std::unique_ptr<MapBuilder2D> Restore(const MapBuilderOptions2D& options,
+                                               common::Executor* executor,
+                                               const MapBuilderState2D& state);
 
  private:
   mapping::LocalTrajectoryBuilder2D local_;

@@ -41,6 +41,15 @@ struct PoseGraphOptions2D {
 // final_optimization_iterations.
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader);
 
+// A loop-closure search queued but not yet finished: node against submap, from the estimate.
+struct PendingSearch2D {
+  int node = 0;
+  int submap = 0;
+  common::Rigid2d T_submap_node;
+};
+
+struct PoseGraphState2D;
+
 // Global SLAM (Hess et al. 2016, Sec. V): collects local SLAM's nodes and submaps, searches
 // loop closures against finished submaps with branch-and-bound, and periodically re-solves all
 // poses with sparse pose adjustment. Searches and optimisations run as tasks on the given
@@ -86,6 +95,18 @@ class PoseGraph2D {
   common::Rigid2d T_map_local() const;
   Stats stats() const;
 
+  // A consistent copy of the graph, taken under the lock without waiting for background
+  // work: searches, precomputations and an optimisation still running are recorded and redone
+  // by RestoreState(). `submaps` receives the submaps by index (their contents are not
+  // copied here; unfinished ones are still written by local SLAM).
+  PoseGraphState2D ExportState(
+      std::vector<std::shared_ptr<const mapping::Submap2D>>* submaps) const;
+  // Only on a graph without nodes. `submaps` are the restored submaps by index. Finished
+  // submaps get their precomputation grids rebuilt on the executor; until that finishes, new
+  // nodes are not searched against them.
+  void RestoreState(const PoseGraphState2D& state,
+                    const std::vector<std::shared_ptr<const mapping::Submap2D>>& submaps);
+
  private:
   struct NodeData {
     double stamp_s;
@@ -98,12 +119,19 @@ class PoseGraph2D {
     std::shared_ptr<const LoopClosureMatcher2D> matcher;  // once finished and precomputed
     bool finished = false;
     FixedRatioSampler sampler{0.0};
+    long sampler_pulses = 0;  // lets a restored sampler be replayed to the same state
   };
 
   int SubmapIndexLocked(const std::shared_ptr<const mapping::Submap2D>& submap,
                         const common::Rigid2d& T_map_local);
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
+  void QueueSearchLocked(const PendingSearch2D& search);
+  // Builds the precomputation grids of finished submap `s`, then queues `searches`, and with
+  // `search_all_nodes` a search of every node near it.
+  std::function<void()> MakeMatcherTask(int s, std::shared_ptr<const mapping::Submap2D> submap,
+                                        bool search_all_nodes,
+                                        std::vector<PendingSearch2D> searches);
   void RunOptimization(int max_iterations);
 
   const PoseGraphOptions2D options_;
@@ -123,6 +151,35 @@ class PoseGraph2D {
   std::vector<SubmapsMovedCallback> callbacks_;  // guarded by mutex_
   // Work found while holding mutex_, handed to the executor once it is released.
   std::vector<std::function<void()>> pending_tasks_;  // guarded by mutex_
+  // Searches handed to the executor and not yet finished, by a running id.
+  std::map<std::uint64_t, PendingSearch2D> searches_in_flight_;  // guarded by mutex_
+  std::uint64_t next_search_id_ = 0;                             // guarded by mutex_
+};
+
+// Everything PoseGraph2D holds besides its options and the submap grids, as plain values
+// (checkpoints). Submaps are numbered as in PoseGraph2D; their grids travel separately.
+struct PoseGraphState2D {
+  struct Node {
+    double stamp_s = 0.0;
+    common::Rigid2d T_local_node;
+    sensor::PointCloud2d cloud;
+    std::vector<int> inserted_into;
+  };
+  struct Submap {
+    bool finished = false;
+    bool matcher_ready = false;  // precomputed, and the searches of all nodes were queued
+    long sampler_pulses = 0;
+  };
+  std::vector<Node> nodes;
+  std::vector<Submap> submaps;
+  std::vector<common::Rigid2d> T_map_nodes;
+  std::vector<common::Rigid2d> T_map_submaps;
+  std::vector<Constraint2D> constraints;
+  std::vector<PendingSearch2D> searches_in_flight;
+  bool optimization_pending = false;
+  int nodes_since_optimization = 0;
+  std::uint64_t solve_count = 0;
+  PoseGraph2D::Stats stats;
 };
 
 }  // namespace pose_graph

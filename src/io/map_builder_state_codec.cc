@@ -1,0 +1,282 @@
+#include "fusemap/io/map_builder_state_codec.h"
+
+#include <string>
+
+#include "fusemap/io/submap_state_codec.h"
+
+namespace fusemap {
+namespace io {
+namespace {
+
+void PutStats(const pose_graph::PoseGraph2D::Stats& s, ByteWriter* out) {
+  for (int v : {s.nodes, s.submaps, s.finished_submaps, s.intra_constraints,
+                s.loop_closure_searches, s.loop_closures_found, s.optimizations}) {
+    out->I32(v);
+  }
+  for (double v : {s.loop_closure_search_s, s.precomputation_s, s.optimization_s}) out->F64(v);
+}
+
+bool GetStats(ByteReader* in, pose_graph::PoseGraph2D::Stats* s) {
+  return in->I32(&s->nodes) && in->I32(&s->submaps) && in->I32(&s->finished_submaps) &&
+         in->I32(&s->intra_constraints) && in->I32(&s->loop_closure_searches) &&
+         in->I32(&s->loop_closures_found) && in->I32(&s->optimizations) &&
+         in->F64(&s->loop_closure_search_s) && in->F64(&s->precomputation_s) &&
+         in->F64(&s->optimization_s);
+}
+
+void PutLocal(const mapping::LocalTrajectoryBuilderState2D& local, ByteWriter* out) {
+  const mapping::PoseExtrapolatorState2D& e = local.extrapolator;
+  out->U64(e.poses.size());
+  for (const auto& p : e.poses) {
+    out->F64(p.stamp_s);
+    EncodeRigid2d(p.pose, out);
+  }
+  out->U64(e.odometry.size());
+  for (const auto& o : e.odometry) {
+    out->F64(o.stamp_s);
+    EncodeRigid2d(o.pose, out);
+  }
+  out->U64(e.imu.size());
+  for (const auto& imu : e.imu) {
+    out->F64(imu.stamp_s);
+    for (int i = 0; i < 3; ++i) out->F64(imu.linear_acceleration_mps2[i]);
+    for (int i = 0; i < 3; ++i) out->F64(imu.angular_velocity_radps[i]);
+  }
+  out->F64(e.linear_velocity_mps.x());
+  out->F64(e.linear_velocity_mps.y());
+  out->F64(e.angular_velocity_radps);
+  out->F64(local.last_scan_stamp_s);
+  out->F64(local.last_insertion_stamp_s);
+  EncodeRigid2d(local.T_local_last_insertion, out);
+  const auto& s = local.stats;
+  for (int v : {s.scans, s.too_few_returns, s.out_of_order, s.inserted, s.odometry_rejected,
+                s.imu_rejected}) {
+    out->I32(v);
+  }
+}
+
+bool GetLocal(ByteReader* in, mapping::LocalTrajectoryBuilderState2D* local) {
+  mapping::PoseExtrapolatorState2D& e = local->extrapolator;
+  size_t n = 0;
+  if (!in->Count(32, &n)) return false;
+  e.poses.resize(n);
+  for (auto& p : e.poses) {
+    if (!in->F64(&p.stamp_s) || !DecodeRigid2d(in, &p.pose)) return false;
+  }
+  if (!in->Count(32, &n)) return false;
+  e.odometry.resize(n);
+  for (auto& o : e.odometry) {
+    if (!in->F64(&o.stamp_s) || !DecodeRigid2d(in, &o.pose)) return false;
+  }
+  if (!in->Count(56, &n)) return false;
+  e.imu.resize(n);
+  for (auto& imu : e.imu) {
+    if (!in->F64(&imu.stamp_s)) return false;
+    for (int i = 0; i < 3; ++i) {
+      if (!in->F64(&imu.linear_acceleration_mps2[i])) return false;
+    }
+    for (int i = 0; i < 3; ++i) {
+      if (!in->F64(&imu.angular_velocity_radps[i])) return false;
+    }
+  }
+  auto& s = local->stats;
+  return in->F64(&e.linear_velocity_mps.x()) && in->F64(&e.linear_velocity_mps.y()) &&
+         in->F64(&e.angular_velocity_radps) && in->F64(&local->last_scan_stamp_s) &&
+         in->F64(&local->last_insertion_stamp_s) &&
+         DecodeRigid2d(in, &local->T_local_last_insertion) &&
+         in->I32(&s.scans) && in->I32(&s.too_few_returns) && in->I32(&s.out_of_order) &&
+         in->I32(&s.inserted) && in->I32(&s.odometry_rejected) && in->I32(&s.imu_rejected);
+}
+
+}  // namespace
+
+void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool compress_grids,
+                           ByteWriter* out) {
+  out->U64(state.submaps.size());
+  for (const auto& submap : state.submaps) EncodeSubmapState(submap, compress_grids, out);
+  const pose_graph::PoseGraphState2D& g = state.pose_graph;
+  out->U64(g.nodes.size());
+  for (const auto& node : g.nodes) {
+    out->F64(node.stamp_s);
+    EncodeRigid2d(node.T_local_node, out);
+    out->U64(node.cloud.size());
+    for (const auto& p : node.cloud) {
+      out->F32(p.x());
+      out->F32(p.y());
+    }
+    out->U64(node.inserted_into.size());
+    for (int s : node.inserted_into) out->I32(s);
+  }
+  out->U64(g.submaps.size());
+  for (const auto& s : g.submaps) {
+    out->U8(s.finished ? 1 : 0);
+    out->U8(s.matcher_ready ? 1 : 0);
+    out->I64(s.sampler_pulses);
+  }
+  out->U64(g.T_map_nodes.size());
+  for (const auto& T : g.T_map_nodes) EncodeRigid2d(T, out);
+  out->U64(g.T_map_submaps.size());
+  for (const auto& T : g.T_map_submaps) EncodeRigid2d(T, out);
+  out->U64(g.constraints.size());
+  for (const auto& c : g.constraints) {
+    out->I32(c.submap);
+    out->I32(c.node);
+    EncodeRigid2d(c.T_submap_node, out);
+    out->F64(c.translation_weight);
+    out->F64(c.rotation_weight);
+    out->U8(c.tag == pose_graph::Constraint2D::kInterSubmap ? 1 : 0);
+  }
+  out->U64(g.searches_in_flight.size());
+  for (const auto& s : g.searches_in_flight) {
+    out->I32(s.node);
+    out->I32(s.submap);
+    EncodeRigid2d(s.T_submap_node, out);
+  }
+  out->U8(g.optimization_pending ? 1 : 0);
+  out->I32(g.nodes_since_optimization);
+  out->U64(g.solve_count);
+  PutStats(g.stats, out);
+  PutLocal(state.local_slam, out);
+  out->U64(state.active_submaps.size());
+  for (int s : state.active_submaps) out->I32(s);
+}
+
+namespace {
+
+bool InRange(int index, size_t size) { return index >= 0 && static_cast<size_t>(index) < size; }
+
+// MapBuilderState2D's invariants, which MapBuilder2D::Restore asserts rather than checks.
+bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in) {
+  const pose_graph::PoseGraphState2D& g = state.pose_graph;
+  const size_t num_submaps = state.submaps.size();
+  const size_t num_nodes = g.nodes.size();
+  if (g.submaps.size() != num_submaps || g.T_map_submaps.size() != num_submaps ||
+      g.T_map_nodes.size() != num_nodes) {
+    in->Fail("the numbers of submaps and nodes disagree between the state's parts");
+    return false;
+  }
+  for (size_t n = 0; n < num_nodes; ++n) {
+    for (int s : g.nodes[n].inserted_into) {
+      if (!InRange(s, num_submaps)) {
+        in->Fail("node " + std::to_string(n) + " names missing submap " + std::to_string(s));
+        return false;
+      }
+    }
+  }
+  for (size_t s = 0; s < num_submaps; ++s) {
+    // Every pulse is one (node, submap) pair tried once, so there are at most num_nodes.
+    if (g.submaps[s].sampler_pulses < 0 ||
+        static_cast<uint64_t>(g.submaps[s].sampler_pulses) > num_nodes) {
+      in->Fail("submap " + std::to_string(s) + " sampler count is out of range");
+      return false;
+    }
+    if (g.submaps[s].finished != state.submaps[s].finished) {
+      in->Fail("submap " + std::to_string(s) + " finished flags disagree");
+      return false;
+    }
+  }
+  for (const auto& c : g.constraints) {
+    if (!InRange(c.submap, num_submaps) || !InRange(c.node, num_nodes)) {
+      in->Fail("a constraint names a missing node or submap");
+      return false;
+    }
+  }
+  for (const auto& search : g.searches_in_flight) {
+    if (!InRange(search.submap, num_submaps) || !InRange(search.node, num_nodes) ||
+        !g.submaps[search.submap].finished) {
+      in->Fail("a pending search names a missing node or unfinished submap");
+      return false;
+    }
+  }
+  if (state.active_submaps.size() > 2) {
+    in->Fail("more than two active submaps");
+    return false;
+  }
+  for (int s : state.active_submaps) {
+    if (!InRange(s, num_submaps)) {
+      in->Fail("active submap " + std::to_string(s) + " is missing");
+      return false;
+    }
+  }
+  if (state.active_submaps.size() == 2 && state.active_submaps[0] == state.active_submaps[1]) {
+    in->Fail("the two active submaps are the same");
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state) {
+  *state = pose_graph::MapBuilderState2D();
+  // Minimum encoded sizes of list elements, for Count's allocation guard.
+  constexpr size_t kSubmapBytes = 24 + 24 + 12 + 2 + 8;
+  constexpr size_t kNodeBytes = 8 + 24 + 8 + 8;
+  size_t n = 0;
+  if (!in->Count(kSubmapBytes, &n)) return false;
+  state->submaps.resize(n);
+  for (auto& submap : state->submaps) {
+    if (!DecodeSubmapState(in, &submap)) return false;
+  }
+  pose_graph::PoseGraphState2D& g = state->pose_graph;
+  if (!in->Count(kNodeBytes, &n)) return false;
+  g.nodes.resize(n);
+  for (auto& node : g.nodes) {
+    if (!in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
+      return false;
+    }
+    node.cloud.resize(n);
+    for (auto& p : node.cloud) {
+      if (!in->F32(&p.x()) || !in->F32(&p.y())) return false;
+    }
+    if (!in->Count(4, &n)) return false;
+    node.inserted_into.resize(n);
+    for (int& s : node.inserted_into) {
+      if (!in->I32(&s)) return false;
+    }
+  }
+  if (!in->Count(10, &n)) return false;
+  g.submaps.resize(n);
+  for (auto& s : g.submaps) {
+    int64_t pulses = 0;
+    if (!in->Bool(&s.finished) || !in->Bool(&s.matcher_ready) || !in->I64(&pulses)) return false;
+    s.sampler_pulses = static_cast<long>(pulses);
+  }
+  for (auto* poses : {&g.T_map_nodes, &g.T_map_submaps}) {
+    if (!in->Count(24, &n)) return false;
+    poses->resize(n);
+    for (auto& T : *poses) {
+      if (!DecodeRigid2d(in, &T)) return false;
+    }
+  }
+  if (!in->Count(49, &n)) return false;
+  g.constraints.resize(n);
+  for (auto& c : g.constraints) {
+    bool inter = false;
+    if (!in->I32(&c.submap) || !in->I32(&c.node) || !DecodeRigid2d(in, &c.T_submap_node) ||
+        !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->Bool(&inter)) {
+      return false;
+    }
+    c.tag = inter ? pose_graph::Constraint2D::kInterSubmap : pose_graph::Constraint2D::kIntraSubmap;
+  }
+  if (!in->Count(32, &n)) return false;
+  g.searches_in_flight.resize(n);
+  for (auto& s : g.searches_in_flight) {
+    if (!in->I32(&s.node) || !in->I32(&s.submap) || !DecodeRigid2d(in, &s.T_submap_node)) {
+      return false;
+    }
+  }
+  if (!in->Bool(&g.optimization_pending) || !in->I32(&g.nodes_since_optimization) ||
+      !in->U64(&g.solve_count) || !GetStats(in, &g.stats) || !GetLocal(in, &state->local_slam) ||
+      !in->Count(4, &n)) {
+    return false;
+  }
+  state->active_submaps.resize(n);
+  for (int& s : state->active_submaps) {
+    if (!in->I32(&s)) return false;
+  }
+  return CheckInvariants(*state, in);
+}
+
+}  // namespace io
+}  // namespace fusemap

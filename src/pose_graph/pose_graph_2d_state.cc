@@ -1,0 +1,86 @@
+// PoseGraph2D's checkpoint support: copying the graph out and rebuilding it.
+#include <cassert>
+#include <map>
+
+#include "fusemap/pose_graph/pose_graph_2d.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+PoseGraphState2D PoseGraph2D::ExportState(
+    std::vector<std::shared_ptr<const mapping::Submap2D>>* submaps) const {
+  PoseGraphState2D state;
+  submaps->clear();
+  std::lock_guard<std::mutex> lock(mutex_);
+  state.nodes.reserve(nodes_.size());
+  for (const auto& node : nodes_) {
+    state.nodes.push_back({node.stamp_s, node.T_local_node, node.cloud, node.inserted_into});
+  }
+  for (const auto& submap : submaps_) {
+    submaps->push_back(submap.submap);
+    state.submaps.push_back({submap.finished, submap.matcher != nullptr, submap.sampler_pulses});
+  }
+  state.T_map_nodes = T_map_nodes_;
+  state.T_map_submaps = T_map_submaps_;
+  state.constraints = constraints_;
+  for (const auto& [id, search] : searches_in_flight_) state.searches_in_flight.push_back(search);
+  state.optimization_pending = optimization_running_;
+  state.nodes_since_optimization = nodes_since_optimization_;
+  state.solve_count = solve_count_;
+  state.stats = stats_;
+  return state;
+}
+
+void PoseGraph2D::RestoreState(
+    const PoseGraphState2D& state,
+    const std::vector<std::shared_ptr<const mapping::Submap2D>>& submaps) {
+  std::vector<std::function<void()>> tasks;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    assert(nodes_.empty() && submaps_.empty());
+    assert(submaps.size() == state.submaps.size());
+    assert(state.T_map_nodes.size() == state.nodes.size());
+    assert(state.T_map_submaps.size() == state.submaps.size());
+    for (const auto& node : state.nodes) {
+      nodes_.push_back({node.stamp_s, node.T_local_node, node.cloud, node.inserted_into});
+    }
+    for (size_t s = 0; s < submaps.size(); ++s) {
+      SubmapData data;
+      data.submap = submaps[s];
+      data.finished = state.submaps[s].finished;
+      data.sampler = FixedRatioSampler(options_.constraint_builder.sampling_ratio);
+      // The sampler is deterministic in its pulse count, so replaying the pulses restores it.
+      for (long i = 0; i < state.submaps[s].sampler_pulses; ++i) data.sampler.Pulse();
+      data.sampler_pulses = state.submaps[s].sampler_pulses;
+      submap_index_[submaps[s].get()] = static_cast<int>(s);
+      submaps_.push_back(std::move(data));
+    }
+    T_map_nodes_ = state.T_map_nodes;
+    T_map_submaps_ = state.T_map_submaps;
+    constraints_ = state.constraints;
+    nodes_since_optimization_ = state.nodes_since_optimization;
+    solve_count_ = state.solve_count;
+    stats_ = state.stats;
+    if (options_.optimize_every_n_nodes == 0) return;
+
+    std::map<int, std::vector<PendingSearch2D>> searches_by_submap;
+    for (const auto& search : state.searches_in_flight) {
+      searches_by_submap[search.submap].push_back(search);
+    }
+    for (size_t s = 0; s < submaps_.size(); ++s) {
+      if (!submaps_[s].finished) continue;
+      // A submap whose precomputation had not finished still owes the search of all nodes.
+      tasks.push_back(MakeMatcherTask(static_cast<int>(s), submaps_[s].submap,
+                                      !state.submaps[s].matcher_ready,
+                                      searches_by_submap[static_cast<int>(s)]));
+    }
+    if (state.optimization_pending) {
+      optimization_running_ = true;
+      tasks.push_back([this] { RunOptimization(options_.optimization.max_num_iterations); });
+    }
+  }
+  for (auto& task : tasks) executor_->Schedule(std::move(task));
+}
+
+}  // namespace pose_graph
+}  // namespace fusemap
