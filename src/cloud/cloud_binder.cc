@@ -1,0 +1,251 @@
+#include "fusemap/cloud/cloud_binder.h"
+
+#include <algorithm>
+#include <cassert>
+#include <chrono>
+#include <cmath>
+#include <unordered_set>
+
+#include "fusemap/cloud/free_space_carver.h"
+#include "fusemap/cloud/map_block_index.h"
+#include "fusemap/cloud/region_stack.h"
+
+namespace fusemap {
+namespace cloud {
+namespace {
+
+double MillisecondsSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+      .count();
+}
+
+bool IsFinite(const ColorPoint& p) {
+  return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+}  // namespace
+
+bool CloudBinderOptions::IsValid(std::string* error) const {
+  if (!(voxel_size_m >= 0.001 && voxel_size_m <= 1.0)) {
+    *error = "voxel_size_m must be in [0.001, 1]";
+    return false;
+  }
+  if (dynamic_ray_stride < 1) {
+    *error = "dynamic_ray_stride must be >= 1";
+    return false;
+  }
+  if (dynamic_margin_voxels < 0) {
+    *error = "dynamic_margin_voxels must be >= 0";
+    return false;
+  }
+  if (!(dynamic_margin_range_fraction >= 0.0 && dynamic_margin_range_fraction < 0.5)) {
+    *error = "dynamic_margin_range_fraction must be in [0, 0.5)";
+    return false;
+  }
+  if (!(dynamic_max_ray_length_m > 0.0)) {
+    *error = "dynamic_max_ray_length_m must be > 0";
+    return false;
+  }
+  if (regions_with_merge_index < 1) {
+    *error = "regions_with_merge_index must be >= 1";
+    return false;
+  }
+  if (index_block_voxels < 1 || index_block_voxels > 64) {
+    *error = "index_block_voxels must be in [1, 64]";
+    return false;
+  }
+  return true;
+}
+
+CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader) {
+  CloudBinderOptions options;
+  reader.Get("voxel_size_m", &options.voxel_size_m);
+  reader.Get("remove_dynamic", &options.remove_dynamic);
+  reader.Get("dynamic_ray_stride", &options.dynamic_ray_stride);
+  reader.Get("dynamic_margin_voxels", &options.dynamic_margin_voxels);
+  reader.Get("dynamic_margin_range_fraction", &options.dynamic_margin_range_fraction);
+  reader.Get("dynamic_max_ray_length_m", &options.dynamic_max_ray_length_m);
+  reader.Get("index_block_voxels", &options.index_block_voxels);
+  reader.Get("regions_with_merge_index", &options.regions_with_merge_index);
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
+  return options;
+}
+
+CloudBinder::CloudBinder(const CloudBinderOptions& options)
+    : options_(options),
+      index_(new MapBlockIndex(options.voxel_size_m, options.index_block_voxels)),
+      removed_points_(new ColorCloud) {
+  std::string error;
+  assert(options.IsValid(&error));
+  FreeSpaceCarverOptions carver_options;
+  carver_options.voxel_size_m = options.voxel_size_m;
+  carver_options.ray_stride = options.dynamic_ray_stride;
+  carver_options.margin_voxels = options.dynamic_margin_voxels;
+  carver_options.margin_range_fraction = options.dynamic_margin_range_fraction;
+  carver_options.max_ray_length_m = options.dynamic_max_ray_length_m;
+  carver_.reset(new FreeSpaceCarver(carver_options));
+}
+
+CloudBinder::~CloudBinder() = default;
+
+RegionStack& CloudBinder::GetOrCreateRegion(int submap_id) {
+  auto it = regions_.find(submap_id);
+  if (it != regions_.end()) return *it->second;
+  auto pose = T_map_submaps_.find(submap_id);
+  const common::Rigid3d T_map_submap =
+      pose == T_map_submaps_.end() ? common::Rigid3d::Identity() : pose->second;
+  auto& region = regions_[submap_id];
+  region.reset(new RegionStack(options_.voxel_size_m, T_map_submap));
+  stats_.regions = regions_.size();
+  return *region;
+}
+
+size_t CloudBinder::Repose(int submap_id, const common::Rigid3d& T_map_submap) {
+  T_map_submaps_[submap_id] = T_map_submap;
+  auto it = regions_.find(submap_id);
+  if (it == regions_.end()) return 0;
+  RegionStack& region = *it->second;
+  const size_t rebuilt = region.SetPose(T_map_submap);
+  if (options_.remove_dynamic) {
+    index_->RemoveRegion(submap_id);
+    const auto& voxels = region.voxels();
+    for (uint32_t slot = 0; slot < voxels.size(); ++slot) {
+      if (voxels[slot].alive()) index_->Add(submap_id, slot, region.CenterInMap(slot));
+    }
+  }
+  return rebuilt;
+}
+
+void CloudBinder::SetSubmapPose(int submap_id, const common::Rigid3d& T_map_submap) {
+  OnSubmapsMoved({{submap_id, T_map_submap}});
+}
+
+void CloudBinder::OnSubmapsMoved(const std::vector<std::pair<int, common::Rigid3d>>& moved) {
+  const auto start = std::chrono::steady_clock::now();
+  size_t points = 0;
+  size_t regions = 0;
+  for (const auto& submap : moved) {
+    const size_t rebuilt = Repose(submap.first, submap.second);
+    points += rebuilt;
+    if (regions_.count(submap.first) != 0) ++regions;
+  }
+  stats_.last_update_regions = regions;
+  stats_.last_update_points = points;
+  stats_.rebuilt_points_total += static_cast<int64_t>(points);
+  stats_.last_update_ms = MillisecondsSince(start);
+}
+
+void CloudBinder::IndexSlots(int submap_id, const RegionStack& region,
+                             const std::vector<uint32_t>& slots) {
+  for (const uint32_t slot : slots) index_->Add(submap_id, slot, region.CenterInMap(slot));
+}
+
+void CloudBinder::CarveFreeSpace(const common::Rigid3d& T_map_camera,
+                                 const ColorCloud& points_camera, int frame_index) {
+  const Eigen::Matrix3f R = T_map_camera.rotation().toRotationMatrix().cast<float>();
+  const Eigen::Vector3f t = T_map_camera.translation().cast<float>();
+  std::vector<Eigen::Vector3f> points_map;
+  points_map.reserve(points_camera.size());
+  for (const ColorPoint& p : points_camera.points) {
+    if (IsFinite(p)) points_map.push_back(R * p.getVector3fMap() + t);
+  }
+  const std::unordered_set<VoxelKey> carved =
+      carver_->CarvedVoxels(t, points_map, *index_, frame_index);
+  if (carved.empty()) return;
+  std::unordered_set<VoxelKey> blocks;
+  for (const VoxelKey key : carved) blocks.insert(index_->BlockKey(UnpackVoxelKey(key)));
+
+  const float inv_voxel_size = index_->inv_voxel_size();
+  std::vector<std::pair<int, uint32_t>> to_remove;
+  int cached_id = 0;
+  RegionStack* cached_region = nullptr;
+  for (const VoxelKey block : blocks) {
+    const std::vector<RegionVoxelRef>* refs = index_->Find(block);
+    if (refs == nullptr) continue;
+    for (const RegionVoxelRef& ref : *refs) {
+      if (cached_region == nullptr || ref.region != cached_id) {
+        cached_id = ref.region;
+        cached_region = regions_.at(ref.region).get();
+      }
+      RegionStack& region = *cached_region;
+      if (!region.voxels()[ref.slot].alive()) continue;
+      if (carved.count(KeyOf(region.CenterInMap(ref.slot), inv_voxel_size)) == 0) continue;
+      if (region.Carve(ref.slot, frame_index)) to_remove.emplace_back(ref.region, ref.slot);
+    }
+  }
+  // Removal after the scan: the index entries being iterated stay untouched meanwhile.
+  for (const auto& victim : to_remove) {
+    removed_points_->push_back(regions_.at(victim.first)->Remove(victim.second));
+  }
+  stats_.points_removed_dynamic += static_cast<int64_t>(to_remove.size());
+  stats_.points_stored -= to_remove.size();
+}
+
+void CloudBinder::AddCloud(int submap_id, const common::Rigid3d& T_submap_camera,
+                           const CameraCloud& cloud) {
+  assert(cloud.points_camera != nullptr);
+  const auto start = std::chrono::steady_clock::now();
+  const int frame_index = static_cast<int>(stats_.frames++);
+  RegionStack& region = GetOrCreateRegion(submap_id);
+  const common::Rigid3d T_map_camera = region.T_map_submap() * T_submap_camera;
+  if (options_.remove_dynamic) {
+    const auto carve_start = std::chrono::steady_clock::now();
+    CarveFreeSpace(T_map_camera, *cloud.points_camera, frame_index);
+    stats_.last_carve_ms = MillisecondsSince(carve_start);
+  }
+  const size_t alive_before = region.num_alive();
+  std::vector<uint32_t> new_slots;
+  region.Insert(*cloud.points_camera, T_submap_camera, frame_index, &new_slots);
+  if (options_.remove_dynamic) IndexSlots(submap_id, region, new_slots);
+  for (const ColorPoint& p : cloud.points_camera->points) {
+    if (IsFinite(p)) ++stats_.points_in;
+  }
+  stats_.points_stored += region.num_alive() - alive_before;
+  auto recent = std::find(recent_regions_.begin(), recent_regions_.end(), submap_id);
+  if (recent != recent_regions_.end()) recent_regions_.erase(recent);
+  recent_regions_.push_back(submap_id);
+  if (static_cast<int>(recent_regions_.size()) > options_.regions_with_merge_index) {
+    regions_.at(recent_regions_.front())->ReleaseKeyIndex();
+    recent_regions_.erase(recent_regions_.begin());
+  }
+  stats_.last_frame_ms = MillisecondsSince(start);
+}
+
+ColorCloud::Ptr CloudBinder::GlobalCloud() const {
+  ColorCloud::Ptr cloud(new ColorCloud);
+  cloud->reserve(stats_.points_stored);
+  for (const auto& region : regions_) {
+    for (const ColorPoint& p : region.second->map_cloud().points) {
+      if (IsFinite(p)) cloud->push_back(p);
+    }
+  }
+  return cloud;
+}
+
+ColorCloud::Ptr CloudBinder::RegionCloud(int submap_id) const {
+  ColorCloud::Ptr cloud(new ColorCloud);
+  auto it = regions_.find(submap_id);
+  if (it == regions_.end()) return cloud;
+  cloud->reserve(it->second->num_alive());
+  for (const ColorPoint& p : it->second->map_cloud().points) {
+    if (IsFinite(p)) cloud->push_back(p);
+  }
+  return cloud;
+}
+
+std::vector<int> CloudBinder::SubmapIds() const {
+  std::vector<int> ids;
+  for (const auto& region : regions_) ids.push_back(region.first);
+  return ids;
+}
+
+size_t CloudBinder::MemoryBytes() const {
+  size_t bytes = sizeof(*this) + index_->MemoryBytes() +
+                 removed_points_->points.capacity() * sizeof(ColorPoint);
+  for (const auto& region : regions_) bytes += region.second->MemoryBytes();
+  return bytes;
+}
+
+}  // namespace cloud
+}  // namespace fusemap

@@ -1,0 +1,180 @@
+#include "fusemap/cloud/cloud_mapper.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "fusemap/common/math.h"
+
+namespace fusemap {
+namespace cloud {
+namespace {
+
+// Below this a submap is considered not to have moved: re-posing costs its whole region.
+constexpr double kMovedTranslationM = 1e-6;
+constexpr double kMovedAngleRad = 1e-7;
+
+common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
+  const auto& xyz = options.T_base_camera_xyz_m;
+  const auto& rpy = options.T_base_camera_rpy_deg;
+  const Eigen::Quaterniond rotation =
+      Eigen::AngleAxisd(common::DegToRad(rpy[2]), Eigen::Vector3d::UnitZ()) *
+      Eigen::AngleAxisd(common::DegToRad(rpy[1]), Eigen::Vector3d::UnitY()) *
+      Eigen::AngleAxisd(common::DegToRad(rpy[0]), Eigen::Vector3d::UnitX());
+  return common::Rigid3d(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), rotation);
+}
+
+bool Moved(const common::Rigid2d& a, const common::Rigid2d& b) {
+  return (a.translation() - b.translation()).norm() > kMovedTranslationM ||
+         std::abs(common::NormalizeAngle(a.angle_rad() - b.angle_rad())) > kMovedAngleRad;
+}
+
+}  // namespace
+
+bool CloudMapperOptions::IsValid(std::string* error) const {
+  if (!(min_frame_interval_s >= 0.0)) {
+    *error = "min_frame_interval_s must be >= 0";
+    return false;
+  }
+  if (max_pending_frames < 1) {
+    *error = "max_pending_frames must be >= 1";
+    return false;
+  }
+  if (T_base_camera_xyz_m.size() != 3 || T_base_camera_rpy_deg.size() != 3) {
+    *error = "T_base_camera_xyz_m and T_base_camera_rpy_deg need 3 numbers each";
+    return false;
+  }
+  if (!(octomap_resolution_m >= 0.005 && octomap_resolution_m <= 2.0)) {
+    *error = "octomap_resolution_m must be in [0.005, 2]";
+    return false;
+  }
+  return frame.IsValid(error) && sync.IsValid(error) && binder.IsValid(error);
+}
+
+CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
+  CloudMapperOptions options;
+  reader.Get("enabled", &options.enabled);
+  reader.Get("min_frame_interval_s", &options.min_frame_interval_s);
+  reader.Get("max_pending_frames", &options.max_pending_frames);
+  reader.Get("override_extrinsic", &options.override_extrinsic);
+  reader.Get("T_base_camera_xyz_m", &options.T_base_camera_xyz_m);
+  reader.Get("T_base_camera_rpy_deg", &options.T_base_camera_rpy_deg);
+  reader.Get("octomap_resolution_m", &options.octomap_resolution_m);
+  options.frame = ParseFrameCloudOptions(reader.Child("frame"));
+  options.sync = ParsePoseInterpolatorOptions(reader.Child("sync"));
+  options.binder = ParseCloudBinderOptions(reader.Child("binder"));
+  // The children report their own keys; only this level's checks are left.
+  CloudMapperOptions own = options;
+  own.frame = FrameCloudOptions();
+  own.sync = PoseInterpolatorOptions();
+  own.binder = CloudBinderOptions();
+  std::string error;
+  if (!own.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
+  return options;
+}
+
+CloudMapper::CloudMapper(const CloudMapperOptions& options)
+    : options_(options), binder_(options.binder), interpolator_(options.sync) {}
+
+void CloudMapper::AddLocalPose(double stamp_s, const common::Rigid2d& T_local_base,
+                               int submap_id, const common::Rigid2d& T_local_submap) {
+  if (!interpolator_.AddPose(stamp_s, T_local_base)) return;  // Counted there.
+  bindings_.push_back({stamp_s, submap_id, T_local_submap});
+  if (T_map_submaps_.count(submap_id) == 0) {
+    // Until global SLAM reports it, a new submap sits where local SLAM put it; the next
+    // UpdateSubmapPoses moves it, and its clouds with it.
+    T_map_submaps_[submap_id] = T_local_submap;
+    binder_.SetSubmapPose(submap_id, common::Rigid3d::FromRigid2d(T_local_submap));
+  }
+  // Keep one binding older than the interpolator's history so every pose it can still
+  // interpolate has the binding that was valid then.
+  while (bindings_.size() > 1 && bindings_[1].stamp_s <= interpolator_.oldest_stamp_s()) {
+    bindings_.pop_front();
+  }
+  newest_stamp_s_ = std::max(newest_stamp_s_, stamp_s);
+  ProcessPending();
+}
+
+void CloudMapper::UpdateSubmapPoses(const std::vector<common::Rigid2d>& T_map_submaps) {
+  std::vector<std::pair<int, common::Rigid3d>> moved;
+  for (size_t i = 0; i < T_map_submaps.size(); ++i) {
+    const int id = static_cast<int>(i);
+    const auto it = T_map_submaps_.find(id);
+    if (it == T_map_submaps_.end()) {
+      T_map_submaps_[id] = T_map_submaps[i];
+      binder_.SetSubmapPose(id, common::Rigid3d::FromRigid2d(T_map_submaps[i]));
+    } else if (Moved(it->second, T_map_submaps[i])) {
+      it->second = T_map_submaps[i];
+      moved.emplace_back(id, common::Rigid3d::FromRigid2d(T_map_submaps[i]));
+    }
+  }
+  if (!moved.empty()) binder_.OnSubmapsMoved(moved);
+}
+
+void CloudMapper::AddFrame(const sensor::RgbdFrame& frame) {
+  ++stats_.frames_in;
+  if (!options_.enabled) return;
+  newest_stamp_s_ = std::max(newest_stamp_s_, frame.stamp_s);
+  if (frame.stamp_s - last_accepted_stamp_s_ < options_.min_frame_interval_s) {
+    ++stats_.frames_skipped_rate;
+    return;
+  }
+  if (static_cast<int>(pending_.size()) >= options_.max_pending_frames) {
+    pending_.pop_front();
+    ++stats_.frames_dropped_queue;
+  }
+  // The rate limit counts from accepted frames: whether one binds is known only later.
+  last_accepted_stamp_s_ = frame.stamp_s;
+  pending_.push_back(frame);
+  ProcessPending();
+}
+
+void CloudMapper::Finish() {
+  finished_ = true;
+  ProcessPending();
+}
+
+void CloudMapper::ProcessPending() {
+  while (!pending_.empty()) {
+    const sensor::RgbdFrame& frame = pending_.front();
+    // After the end of input no later pose will come, so waiting is pointless.
+    const double now_s = finished_ ? frame.stamp_s + options_.sync.hold_s + 1.0 : newest_stamp_s_;
+    const PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
+    if (result.status == PoseInterpolator::Status::kWait) return;
+    if (result.status == PoseInterpolator::Status::kReady) {
+      Bind(frame, result.T_map_base);
+    } else {
+      ++stats_.frames_dropped_no_pose;
+    }
+    pending_.pop_front();
+  }
+}
+
+const CloudMapper::Binding* CloudMapper::BindingAt(double stamp_s) const {
+  const auto it = std::upper_bound(
+      bindings_.begin(), bindings_.end(), stamp_s,
+      [](double stamp, const Binding& binding) { return stamp < binding.stamp_s; });
+  if (it == bindings_.begin()) return bindings_.empty() ? nullptr : &bindings_.front();
+  return &*std::prev(it);
+}
+
+void CloudMapper::Bind(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base) {
+  const Binding* binding = BindingAt(frame.stamp_s);
+  if (binding == nullptr) {
+    ++stats_.frames_dropped_no_submap;
+    return;
+  }
+  CameraCloud cloud = BuildFrameCloud(frame, options_.frame, &stats_.last_frame);
+  if (options_.override_extrinsic) cloud.T_base_camera = ExtrinsicFromConfig(options_);
+  if (!cloud.points_camera || cloud.points_camera->empty()) {
+    ++stats_.frames_empty;
+    return;
+  }
+  const common::Rigid3d T_submap_camera =
+      common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_base) *
+      cloud.T_base_camera;
+  binder_.AddCloud(binding->submap_id, T_submap_camera, cloud);
+  ++stats_.frames_bound;
+}
+
+}  // namespace cloud
+}  // namespace fusemap

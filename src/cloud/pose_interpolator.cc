@@ -1,0 +1,92 @@
+#include "fusemap/cloud/pose_interpolator.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <iterator>
+#include <limits>
+
+namespace fusemap {
+namespace cloud {
+namespace {
+
+bool FirstProblem(const PoseInterpolatorOptions& o, std::string* key, std::string* message) {
+  auto problem = [&](const char* k, const char* m) {
+    *key = k;
+    *message = m;
+    return true;
+  };
+  if (!(o.max_history_s > 0.0)) return problem("max_history_s", "must be > 0");
+  if (!(o.max_gap_s > 0.0)) return problem("max_gap_s", "must be > 0");
+  if (!(o.hold_s >= 0.0)) return problem("hold_s", "must be >= 0");
+  return false;
+}
+
+}  // namespace
+
+bool PoseInterpolatorOptions::IsValid(std::string* error) const {
+  std::string key, message;
+  if (!FirstProblem(*this, &key, &message)) return true;
+  if (error != nullptr) *error = key + " " + message;
+  return false;
+}
+
+PoseInterpolatorOptions ParsePoseInterpolatorOptions(common::ConfigReader& reader) {
+  PoseInterpolatorOptions options;
+  reader.Get("max_history_s", &options.max_history_s);
+  reader.Get("max_gap_s", &options.max_gap_s);
+  reader.Get("hold_s", &options.hold_s);
+  std::string key, message;
+  if (FirstProblem(options, &key, &message)) reader.AddError(key, message);
+  return options;
+}
+
+PoseInterpolator::PoseInterpolator(const PoseInterpolatorOptions& options) : options_(options) {
+  assert(options.IsValid(nullptr));
+}
+
+double PoseInterpolator::oldest_stamp_s() const {
+  return poses_.empty() ? std::numeric_limits<double>::quiet_NaN() : poses_.front().stamp_s;
+}
+
+double PoseInterpolator::newest_stamp_s() const {
+  return poses_.empty() ? std::numeric_limits<double>::quiet_NaN() : poses_.back().stamp_s;
+}
+
+bool PoseInterpolator::AddPose(double stamp_s, const common::Rigid2d& T_map_base) {
+  if (!std::isfinite(stamp_s) || (!poses_.empty() && stamp_s <= poses_.back().stamp_s)) {
+    ++num_rejected_poses_;
+    return false;
+  }
+  poses_.push_back(TimedPose{stamp_s, T_map_base});
+  const double horizon_s = stamp_s - options_.max_history_s;
+  while (poses_.front().stamp_s < horizon_s) poses_.pop_front();
+  return true;
+}
+
+PoseInterpolator::Result PoseInterpolator::Drop(int64_t* counter) {
+  ++*counter;
+  return Result();
+}
+
+PoseInterpolator::Result PoseInterpolator::Lookup(double stamp_s, double now_s) {
+  if (poses_.empty() || stamp_s > poses_.back().stamp_s) {
+    if (now_s - stamp_s <= options_.hold_s) return Result{Status::kWait, {}};
+    return Drop(&num_dropped_timeout_);
+  }
+  if (stamp_s < poses_.front().stamp_s) return Drop(&num_dropped_too_old_);
+
+  // First sample not earlier than stamp_s; exists because stamp_s <= newest stamp.
+  const auto after = std::lower_bound(
+      poses_.begin(), poses_.end(), stamp_s,
+      [](const TimedPose& pose, double stamp) { return pose.stamp_s < stamp; });
+  if (after->stamp_s == stamp_s) return Result{Status::kReady, after->T_map_base};
+  const auto before = std::prev(after);
+  const double gap_s = after->stamp_s - before->stamp_s;
+  if (gap_s > options_.max_gap_s) return Drop(&num_dropped_gap_);
+  const double fraction = (stamp_s - before->stamp_s) / gap_s;
+  return Result{Status::kReady, common::Interpolate(before->T_map_base, after->T_map_base, fraction)};
+}
+
+}  // namespace cloud
+}  // namespace fusemap
