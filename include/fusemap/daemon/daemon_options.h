@@ -1,0 +1,48 @@
+#ifndef FUSEMAP_DAEMON_DAEMON_OPTIONS_H_
+#define FUSEMAP_DAEMON_DAEMON_OPTIONS_H_
+
+#include <string>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/io/slam_config.h"
+
+namespace fusemap {
+namespace daemon {
+
+// fusemapd's own settings: the `daemon:` key of the same YAML file as the SLAM profile, so a
+// profile without that key runs with these defaults.
+struct DaemonOptions {
+  // Output channels (the pose goes on the profile's channels.pose).
+  std::string submap_list_channel = "FUSEMAP_SUBMAPS";
+  std::string loop_closure_channel = "FUSEMAP_LOOP_CLOSURE";
+  std::string health_channel = "FUSEMAP_HEALTH";
+  // Laser, odometry and IMU share one queue so their order is kept (the offline runner's order).
+  int sensor_queue_size = 400;
+  int rgbd_queue_size = 4;
+  double submap_list_rate_hz = 5.0;
+  double health_rate_hz = 1.0;
+  // Messages stamped further than this ahead of the wall clock are rejected (live sources only).
+  double max_future_s = 5.0;
+  // Scans with a larger share of NaN/inf ranges are rejected as broken.
+  double max_nonfinite_range_fraction = 0.5;
+  int max_message_bytes = 32 << 20;
+  // Seconds between malformed-message log lines of one kind.
+  double bad_message_log_interval_s = 10.0;
+  // Seconds between checkpoints; 0 = only at shutdown.
+  double checkpoint_period_s = 60.0;
+
+  bool IsValid(std::string* error) const;
+};
+
+// Keys: as the field names.
+DaemonOptions ParseDaemonOptions(common::ConfigReader& reader);
+
+// Loads a SLAM profile (keys of io::LoadSlamConfig) plus the optional `daemon:` key. Unknown
+// keys anywhere fail with file:line and the key.
+bool LoadDaemonConfig(const std::string& path, io::SlamConfig* slam, DaemonOptions* daemon,
+                      std::string* error);
+
+}  // namespace daemon
+}  // namespace fusemap
+
+#endif  // FUSEMAP_DAEMON_DAEMON_OPTIONS_H_

@@ -1,0 +1,115 @@
+#ifndef FUSEMAP_DAEMON_ENGINE_H_
+#define FUSEMAP_DAEMON_ENGINE_H_
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "fusemap/common/thread_pool.h"
+#include "fusemap/daemon/bounded_queue.h"
+#include "fusemap/daemon/daemon_options.h"
+#include "fusemap/daemon/health.h"
+#include "fusemap/daemon/intake.h"
+#include "fusemap/daemon/publisher.h"
+#include "fusemap/daemon/rate_limited_log.h"
+#include "fusemap/io/slam_config.h"
+#include "fusemap/pose_graph/map_builder_2d.h"
+
+namespace fusemap {
+namespace daemon {
+
+// The daemon without the network: intake queues, the local SLAM thread feeding MapBuilder2D
+// exactly as fusemap_offline does, global optimisation on the executor (a ThreadPool, or inline
+// on the SLAM thread with one thread: then runs are bit-for-bit reproducible), a publisher
+// thread (pose per scan, submap list at a rate and after every optimisation, loop-closure
+// events, health) and an RGB-D consumer thread. Whoever owns the LCM handle feeds intake().
+// Ownership: the SLAM thread alone feeds the builder and owns the odometry record; the other
+// threads only read the pose graph's thread-safe snapshots and counters.
+class Engine {
+ public:
+  using RgbdConsumer = std::function<void(RgbdMessage&&)>;
+
+  Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num_threads,
+         OverflowPolicy policy, Publisher* publisher, RateLimitedLog* log);
+  ~Engine();
+  Engine(const Engine&) = delete;
+  Engine& operator=(const Engine&) = delete;
+
+  // Before Start(): hooks. Without an RGB-D consumer, frames are not decoded.
+  void SetCheckpointer(Checkpointer* checkpointer) { checkpointer_ = checkpointer; }
+  void SetRgbdConsumer(RgbdConsumer consumer);
+  // Before Start(): for restoring a checkpoint into.
+  pose_graph::MapBuilder2D& builder() { return *builder_; }
+
+  void Start();
+  Intake& intake() { return intake_; }
+  // Stops intake, processes everything queued, runs the final optimisation, writes a last
+  // checkpoint, publishes the final submap list and health, and joins every thread. Idempotent.
+  void Finish();
+
+  // After Finish(): the builder and the odometry the SLAM thread accepted.
+  const pose_graph::MapBuilder2D& finished_builder() const { return *builder_; }
+  const std::vector<sensor::OdometryData>& odometry() const { return odometry_; }
+  // After Finish(): fusemap_offline's output files into `dir`.
+  bool WriteOutputs(const std::string& dir, std::string* error) const;
+
+  HealthReport Health() const;
+  int scans_processed() const { return scans_processed_; }
+  int checkpoint_failures() const { return checkpoint_failures_; }
+
+ private:
+  struct OutputEvent {
+    enum class Kind { kPose, kSubmapsMoved } kind = Kind::kPose;
+    std::chrono::steady_clock::time_point received;
+    double stamp_s = 0.0;
+    common::Rigid2d pose;
+  };
+
+  void RunLocalSlam();
+  void RunPublisher();
+  void RunRgbd();
+  void Process(SensorMessage& message);
+  void MaybeCheckpoint(bool force);
+  void PublishSubmapsAndLoops(double stamp_s);
+
+  const io::SlamConfig slam_;
+  const DaemonOptions options_;
+  Publisher* const publisher_;
+  RateLimitedLog* const log_;
+  Checkpointer* checkpointer_ = nullptr;
+  RgbdConsumer rgbd_consumer_;
+  const std::chrono::steady_clock::time_point start_;
+
+  // Declared before the builder so that they outlive it (its callbacks push into outputs_).
+  Intake intake_;
+  BoundedQueue<OutputEvent> outputs_;
+  LatencyWindow latency_;
+  std::unique_ptr<common::Executor> executor_;
+  std::unique_ptr<pose_graph::MapBuilder2D> builder_;
+
+  // SLAM thread only (read by others only after Finish joined it).
+  std::vector<sensor::OdometryData> odometry_;
+  std::chrono::steady_clock::time_point last_checkpoint_;
+  std::atomic<int> scans_processed_{0};
+  std::atomic<int> checkpoint_failures_{0};
+  std::atomic<double> last_stamp_s_{0.0};
+  // Publisher thread only.
+  int published_loop_closures_ = 0;
+
+  std::mutex finish_mutex_;
+  bool started_ = false;   // guarded by finish_mutex_
+  bool finished_ = false;  // guarded by finish_mutex_
+  std::thread slam_thread_;
+  std::thread publisher_thread_;
+  std::thread rgbd_thread_;
+};
+
+}  // namespace daemon
+}  // namespace fusemap
+
+#endif  // FUSEMAP_DAEMON_ENGINE_H_

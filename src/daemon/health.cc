@@ -1,0 +1,66 @@
+#include "fusemap/daemon/health.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+
+namespace fusemap {
+namespace daemon {
+
+void LatencyWindow::Add(double latency_ms) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  samples_.push_back(latency_ms);
+  if (samples_.size() > window_) samples_.pop_front();
+}
+
+LatencyWindow::Summary LatencyWindow::Summarize() const {
+  std::vector<double> values;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    values.assign(samples_.begin(), samples_.end());
+  }
+  Summary summary;
+  summary.count = values.size();
+  if (values.empty()) return summary;
+  summary.max_ms = *std::max_element(values.begin(), values.end());
+  summary.p99_ms = Percentile(values, 0.99);
+  summary.median_ms = Percentile(std::move(values), 0.5);
+  return summary;
+}
+
+double Percentile(std::vector<double> values, double q) {
+  if (values.empty()) return 0.0;
+  const size_t i =
+      std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
+  std::nth_element(values.begin(), values.begin() + i, values.end());
+  return values[i];
+}
+
+int64_t ResidentMemoryBytes() {
+  std::ifstream statm("/proc/self/statm");
+  int64_t total_pages = 0, resident_pages = 0;
+  if (!(statm >> total_pages >> resident_pages)) return 0;
+  return resident_pages * static_cast<int64_t>(sysconf(_SC_PAGESIZE));
+}
+
+std::string FormatHealth(const HealthReport& report) {
+  char buffer[256];
+  std::snprintf(buffer, sizeof(buffer), "up=%.0fs nodes=%d submaps=%d constraints=%d loops=%d opt=%d",
+                report.uptime_s, report.nodes, report.submaps, report.constraints,
+                report.loop_closures, report.optimizations);
+  std::string line = buffer;
+  for (const auto& c : report.channels) {
+    std::snprintf(buffer, sizeof(buffer), " %s=%lld/%lld/%lld/q%d", c.name.c_str(),
+                  static_cast<long long>(c.received), static_cast<long long>(c.dropped),
+                  static_cast<long long>(c.malformed), c.queue_depth);
+    line += buffer;
+  }
+  std::snprintf(buffer, sizeof(buffer), " latency_p50=%.1fms p99=%.1fms rss=%.0fMB",
+                report.latency.median_ms, report.latency.p99_ms, report.rss_bytes / 1048576.0);
+  return line + buffer;
+}
+
+}  // namespace daemon
+}  // namespace fusemap

@@ -1,0 +1,152 @@
+#include "fusemap/daemon/intake.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "fusemap/io/lcm_conversions.h"
+#include "fusemap/io/rgbd_conversions.h"
+
+namespace fusemap {
+namespace daemon {
+namespace {
+
+double SystemClockSeconds() {
+  return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+Intake::Intake(const io::SlamConfig& slam, const DaemonOptions& options, OverflowPolicy policy,
+               RateLimitedLog* log, WallClock wall_clock_s)
+    : slam_(slam),
+      options_(options),
+      log_(log),
+      wall_clock_s_(wall_clock_s ? std::move(wall_clock_s) : WallClock(SystemClockSeconds)),
+      names_{slam.channels.lidar, slam.channels.odometry, slam.channels.imu, slam.channels.rgbd},
+      sensor_queue_(options.sensor_queue_size, policy,
+                    [this](const SensorMessage& m) { ++counters_[m.channel].dropped; }),
+      rgbd_queue_(options.rgbd_queue_size, policy,
+                  [this](const RgbdMessage&) { ++counters_[kRgbdChannel].dropped; }) {
+  last_stamp_s_.fill(-std::numeric_limits<double>::infinity());
+}
+
+bool Intake::Reject(InputChannel channel, const std::string& kind, const std::string& why) {
+  ++counters_[channel].malformed;
+  if (log_ != nullptr) log_->Report(names_[channel] + ": " + kind, why);
+  return false;
+}
+
+bool Intake::CheckStamp(InputChannel channel, double stamp_s) {
+  char buffer[160];
+  const double now_s = wall_clock_s_();
+  if (stamp_s > now_s + options_.max_future_s) {
+    std::snprintf(buffer, sizeof(buffer), "stamp %.6f is %.1f s ahead of the clock; dropped",
+                  stamp_s, stamp_s - now_s);
+    return Reject(channel, "timestamp from the future", buffer);
+  }
+  if (stamp_s < last_stamp_s_[channel]) {
+    std::snprintf(buffer, sizeof(buffer), "stamp %.6f is before the previous %.6f; dropped",
+                  stamp_s, last_stamp_s_[channel]);
+    return Reject(channel, "timestamp going backwards", buffer);
+  }
+  last_stamp_s_[channel] = stamp_s;
+  return true;
+}
+
+bool Intake::Enqueue(InputChannel channel, SensorMessage message) {
+  message.channel = channel;
+  return sensor_queue_.Push(std::move(message));
+}
+
+bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
+  const auto received = std::chrono::steady_clock::now();
+  int index = -1;
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    if (!names_[i].empty() && names_[i] == channel) index = i;
+  }
+  if (index < 0) return false;
+  const InputChannel input = static_cast<InputChannel>(index);
+  ++counters_[input].received;
+  if (size < 0 || size > options_.max_message_bytes) {
+    return Reject(input, "oversized message",
+                  std::to_string(size) + " bytes (limit " +
+                      std::to_string(options_.max_message_bytes) + "); dropped");
+  }
+  std::string error;
+  SensorMessage message;
+  message.received = received;
+  switch (input) {
+    case kLidarChannel: {
+      sensor::LaserScan scan;
+      io::LaserDecodeStats stats;
+      if (!io::DecodeLaserScan(data, size, slam_.lidar, &scan, &error, &stats)) {
+        return Reject(input, "undecodable scan", error);
+      }
+      if (scan.ranges_m.empty() || stats.nonfinite_ranges > options_.max_nonfinite_range_fraction *
+                                                                 scan.ranges_m.size()) {
+        return Reject(input, "scan without usable ranges",
+                      std::to_string(stats.nonfinite_ranges) + " of " +
+                          std::to_string(scan.ranges_m.size()) + " ranges are NaN/inf; dropped");
+      }
+      if (!CheckStamp(input, scan.stamp_s)) return false;
+      message.data = std::move(scan);
+      return Enqueue(input, std::move(message));
+    }
+    case kOdometryChannel: {
+      sensor::OdometryData odometry;
+      if (!io::DecodeOdometry(data, size, &odometry, &error)) {
+        return Reject(input, "undecodable odometry", error);
+      }
+      if (!CheckStamp(input, odometry.stamp_s)) return false;
+      message.data = odometry;
+      return Enqueue(input, std::move(message));
+    }
+    case kImuChannel: {
+      sensor::ImuData imu;
+      if (!io::DecodeImu(data, size, &imu, &error)) return Reject(input, "undecodable IMU", error);
+      if (!CheckStamp(input, imu.stamp_s)) return false;
+      message.data = imu;
+      return Enqueue(input, std::move(message));
+    }
+    case kRgbdChannel: {
+      if (!decode_rgbd_) return false;
+      RgbdMessage rgbd;
+      rgbd.received = received;
+      if (!io::DecodeRgbdFrame(data, size, &rgbd.frame, &error)) {
+        return Reject(input, "undecodable RGB-D frame", error);
+      }
+      if (!CheckStamp(input, rgbd.frame.stamp_s)) return false;
+      return rgbd_queue_.Push(std::move(rgbd));
+    }
+    case kNumInputChannels:
+      break;
+  }
+  return false;
+}
+
+void Intake::Close() {
+  sensor_queue_.Close();
+  rgbd_queue_.Close();
+}
+
+std::vector<HealthReport::Channel> Intake::ChannelHealth() const {
+  std::vector<HealthReport::Channel> rows;
+  const int sensor_depth = static_cast<int>(sensor_queue_.size());
+  for (int i = 0; i < kNumInputChannels; ++i) {
+    if (names_[i].empty()) continue;
+    HealthReport::Channel row;
+    row.name = names_[i];
+    row.received = counters_[i].received.load();
+    row.dropped = counters_[i].dropped.load();
+    row.malformed = counters_[i].malformed.load();
+    row.queue_depth = i == kRgbdChannel ? static_cast<int>(rgbd_queue_.size()) : sensor_depth;
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+}  // namespace daemon
+}  // namespace fusemap

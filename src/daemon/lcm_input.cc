@@ -1,0 +1,54 @@
+#include "fusemap/daemon/lcm_input.h"
+
+#include <lcm/lcm-cpp.hpp>
+
+namespace fusemap {
+namespace daemon {
+
+bool IsLogUrl(const std::string& lcm_url) { return lcm_url.rfind("file://", 0) == 0; }
+
+OverflowPolicy PolicyForUrl(const std::string& lcm_url) {
+  return IsLogUrl(lcm_url) ? OverflowPolicy::kBlock : OverflowPolicy::kDropOldest;
+}
+
+LcmInput::LcmInput() = default;
+
+LcmInput::~LcmInput() = default;
+
+bool LcmInput::Open(const std::string& lcm_url, std::string* error) {
+  is_log_ = IsLogUrl(lcm_url);
+  lcm_ = std::make_unique<lcm::LCM>(lcm_url);
+  if (!lcm_->good()) {
+    *error = "cannot open LCM URL '" + lcm_url + "'" +
+             (is_log_ ? " (is the log file readable?)" : "");
+    lcm_.reset();
+    return false;
+  }
+  return true;
+}
+
+void LcmInput::Subscribe(Intake* intake) {
+  intake_ = intake;
+  for (const std::string& name : intake_->channel_names()) {
+    if (name.empty()) continue;
+    // LCM treats channel names as regular expressions; anchor-free names match themselves.
+    lcm_->subscribe(name, &LcmInput::OnRaw, this);
+  }
+}
+
+void LcmInput::OnRaw(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
+  intake_->OnMessage(channel, buffer->data, static_cast<int>(buffer->data_size));
+}
+
+LcmInput::End LcmInput::Run(const std::atomic<bool>& stop, int poll_ms) {
+  while (!stop) {
+    // 0 = timeout, > 0 = handled a message, < 0 = the provider is done (end of a log) or broken.
+    if (lcm_->handleTimeout(poll_ms) < 0) return is_log_ ? End::kEndOfLog : End::kError;
+  }
+  return End::kStopped;
+}
+
+lcm::LCM* LcmInput::publish_handle() { return is_log_ ? nullptr : lcm_.get(); }
+
+}  // namespace daemon
+}  // namespace fusemap

@@ -1,0 +1,81 @@
+#include "fusemap/daemon/daemon_options.h"
+
+#include <gtest/gtest.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cstdio>
+#include <fstream>
+#include <string>
+
+namespace fusemap {
+namespace daemon {
+namespace {
+
+std::string WriteTemp(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+TEST(DaemonOptionsTest, ProfileWithoutDaemonKeyUsesDefaults) {
+  io::SlamConfig slam;
+  DaemonOptions options;
+  std::string error;
+  ASSERT_TRUE(LoadDaemonConfig(std::string(FUSEMAP_SOURCE_DIR) + "/config/sim.yaml", &slam,
+                               &options, &error))
+      << error;
+  EXPECT_EQ(slam.channels.lidar, "LIDAR");
+  EXPECT_EQ(options.sensor_queue_size, DaemonOptions().sensor_queue_size);
+  EXPECT_EQ(options.health_channel, "FUSEMAP_HEALTH");
+}
+
+TEST(DaemonOptionsTest, DaemonYamlLoadsAndKeepsSimSlamOptions) {
+  io::SlamConfig slam, sim;
+  DaemonOptions options, unused;
+  std::string error;
+  const std::string dir = std::string(FUSEMAP_SOURCE_DIR) + "/config/";
+  ASSERT_TRUE(LoadDaemonConfig(dir + "daemon.yaml", &slam, &options, &error)) << error;
+  ASSERT_TRUE(LoadDaemonConfig(dir + "sim.yaml", &sim, &unused, &error)) << error;
+  EXPECT_EQ(slam.channels.pose, "FUSEMAP_POSE");
+  EXPECT_DOUBLE_EQ(options.checkpoint_period_s, 60.0);
+  // The SLAM part is sim.yaml's: spot-check values that differ from the struct defaults.
+  EXPECT_EQ(slam.map_builder.global_slam.optimize_every_n_nodes,
+            sim.map_builder.global_slam.optimize_every_n_nodes);
+  EXPECT_EQ(slam.map_builder.local_slam.submaps.num_range_data,
+            sim.map_builder.local_slam.submaps.num_range_data);
+  EXPECT_FLOAT_EQ(slam.lidar.range_max_m, sim.lidar.range_max_m);
+}
+
+TEST(DaemonOptionsTest, DaemonYamlSlamPartIsSimYamlVerbatim) {
+  // config/daemon.yaml repeats config/sim.yaml (YAML has no include); catch drift here.
+  const std::string dir = std::string(FUSEMAP_SOURCE_DIR) + "/config/";
+  YAML::Node daemon = YAML::LoadFile(dir + "daemon.yaml");
+  YAML::Node sim = YAML::LoadFile(dir + "sim.yaml");
+  daemon.remove("daemon");
+  daemon["channels"].remove("rgbd");
+  daemon["channels"].remove("pose");
+  YAML::Emitter a, b;
+  a << daemon;
+  b << sim;
+  EXPECT_EQ(std::string(a.c_str()), std::string(b.c_str()));
+}
+
+TEST(DaemonOptionsTest, UnknownAndOutOfRangeDaemonKeysFailWithKey) {
+  io::SlamConfig slam;
+  DaemonOptions options;
+  std::string error;
+  EXPECT_FALSE(LoadDaemonConfig(WriteTemp("typo.yaml", "daemon:\n  sensor_queue_sise: 3\n"),
+                                &slam, &options, &error));
+  EXPECT_NE(error.find("sensor_queue_sise"), std::string::npos) << error;
+  EXPECT_FALSE(LoadDaemonConfig(WriteTemp("range.yaml", "daemon:\n  sensor_queue_size: 0\n"),
+                                &slam, &options, &error));
+  EXPECT_NE(error.find("queue"), std::string::npos) << error;
+  ASSERT_TRUE(LoadDaemonConfig(WriteTemp("ok.yaml", "daemon:\n  rgbd_queue_size: 9\n"), &slam,
+                               &options, &error))
+      << error;
+  EXPECT_EQ(options.rgbd_queue_size, 9);
+}
+
+}  // namespace
+}  // namespace daemon
+}  // namespace fusemap

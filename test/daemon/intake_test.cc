@@ -1,0 +1,123 @@
+#include "fusemap/daemon/intake.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "fusemap/io/lcm_conversions.h"
+
+namespace fusemap {
+namespace daemon {
+namespace {
+
+constexpr double kNowS = 1700000100.0;
+
+sensor::LaserScan Scan(double stamp_s, int beams = 100) {
+  sensor::LaserScan scan;
+  scan.stamp_s = stamp_s;
+  scan.angle_min_rad = -1.f;
+  scan.angle_increment_rad = 0.02f;
+  scan.range_min_m = 0.1f;
+  scan.range_max_m = 10.f;
+  scan.ranges_m.assign(beams, 3.f);
+  return scan;
+}
+
+class IntakeTest : public ::testing::Test {
+ protected:
+  IntakeTest() : log_(0.0, [] { return 0.0; }, [this](const std::string& l) { lines_.push_back(l); }) {}
+
+  std::unique_ptr<Intake> Make(OverflowPolicy policy, int queue_size = 100) {
+    DaemonOptions options;
+    options.sensor_queue_size = queue_size;
+    return std::make_unique<Intake>(io::SlamConfig(), options, policy, &log_, [] { return kNowS; });
+  }
+  static bool Send(Intake& intake, const std::string& channel, const std::vector<uint8_t>& bytes) {
+    return intake.OnMessage(channel, bytes.data(), static_cast<int>(bytes.size()));
+  }
+
+  std::vector<std::string> lines_;
+  RateLimitedLog log_;
+};
+
+TEST_F(IntakeTest, ValidMessagesQueuedInArrivalOrder) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  EXPECT_TRUE(Send(*intake, "ODOMETRY", io::EncodeOdometry({kNowS - 2.0, common::Rigid2d()})));
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 1.9))));
+  sensor::ImuData imu;
+  imu.stamp_s = kNowS - 1.8;
+  EXPECT_TRUE(Send(*intake, "IMU", io::EncodeImu(imu)));
+  EXPECT_FALSE(Send(*intake, "OTHER", io::EncodeImu(imu)));
+  ASSERT_EQ(intake->sensor_queue().size(), 3u);
+  EXPECT_TRUE(std::holds_alternative<sensor::OdometryData>(intake->sensor_queue().Pop()->data));
+  auto scan = intake->sensor_queue().Pop();
+  EXPECT_EQ(scan->channel, kLidarChannel);
+  EXPECT_EQ(std::get<sensor::LaserScan>(scan->data).ranges_m.size(), 100u);
+  EXPECT_TRUE(std::holds_alternative<sensor::ImuData>(intake->sensor_queue().Pop()->data));
+  EXPECT_EQ(intake->counters(kLidarChannel).received, 1);
+  EXPECT_TRUE(lines_.empty());
+}
+
+TEST_F(IntakeTest, MalformedMessagesCountedPerChannelAndLogged) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  std::vector<uint8_t> scan = io::EncodeLaserScan(Scan(kNowS - 1.0));
+  std::vector<uint8_t> truncated(scan.begin(), scan.begin() + scan.size() / 2);
+  EXPECT_FALSE(Send(*intake, "LIDAR", truncated));
+  std::vector<uint8_t> wrong_fingerprint = scan;
+  wrong_fingerprint[0] ^= 0xff;
+  EXPECT_FALSE(Send(*intake, "LIDAR", wrong_fingerprint));
+  sensor::LaserScan nan_scan = Scan(kNowS - 1.0);
+  for (size_t i = 0; i < 60; ++i) nan_scan.ranges_m[i] = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(nan_scan)));
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS + 60.0))));  // future
+  EXPECT_TRUE(Send(*intake, "LIDAR", scan));
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 2.0))));  // backwards
+  EXPECT_FALSE(Send(*intake, "ODOMETRY", std::vector<uint8_t>(3, 0)));
+  std::vector<uint8_t> huge(DaemonOptions().max_message_bytes + 1, 0);
+  EXPECT_FALSE(Send(*intake, "IMU", huge));
+
+  EXPECT_EQ(intake->counters(kLidarChannel).received, 6);
+  EXPECT_EQ(intake->counters(kLidarChannel).malformed, 5);
+  EXPECT_EQ(intake->counters(kOdometryChannel).malformed, 1);
+  EXPECT_EQ(intake->counters(kImuChannel).malformed, 1);
+  EXPECT_EQ(intake->sensor_queue().size(), 1u);
+  ASSERT_EQ(lines_.size(), 7u);  // interval 0: every report is written
+  EXPECT_NE(lines_[3].find("future"), std::string::npos) << lines_[3];
+  EXPECT_NE(lines_[4].find("backwards"), std::string::npos) << lines_[4];
+}
+
+TEST_F(IntakeTest, OverflowDropsOldestAndCountsItsChannel) {
+  auto intake = Make(OverflowPolicy::kDropOldest, 2);
+  EXPECT_TRUE(Send(*intake, "ODOMETRY", io::EncodeOdometry({kNowS - 3.0, common::Rigid2d()})));
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 2.0 + 0.1 * i))));
+  }
+  EXPECT_EQ(intake->counters(kOdometryChannel).dropped, 1);
+  EXPECT_EQ(intake->counters(kLidarChannel).dropped, 1);
+  const auto rows = intake->ChannelHealth();
+  ASSERT_EQ(rows.size(), 4u);
+  EXPECT_EQ(rows[0].name, "LIDAR");
+  EXPECT_EQ(rows[0].queue_depth, 2);
+  EXPECT_DOUBLE_EQ(
+      std::get<sensor::LaserScan>(intake->sensor_queue().Pop()->data).stamp_s, kNowS - 1.9);
+}
+
+TEST_F(IntakeTest, RgbdIgnoredWithoutConsumerAndCloseRefuses) {
+  auto intake = Make(OverflowPolicy::kBlock);
+  EXPECT_FALSE(Send(*intake, "RGBD", std::vector<uint8_t>(10, 1)));
+  EXPECT_EQ(intake->counters(kRgbdChannel).received, 1);
+  EXPECT_EQ(intake->counters(kRgbdChannel).malformed, 0);
+  intake->set_decode_rgbd(true);
+  EXPECT_FALSE(Send(*intake, "RGBD", std::vector<uint8_t>(10, 1)));
+  EXPECT_EQ(intake->counters(kRgbdChannel).malformed, 1);
+  intake->Close();
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 1.0))));
+  EXPECT_TRUE(intake->sensor_queue().closed_and_drained());
+}
+
+}  // namespace
+}  // namespace daemon
+}  // namespace fusemap

@@ -1,0 +1,208 @@
+// file:// replay through the whole daemon engine (LCM file provider, intake, queues, SLAM
+// thread, publisher) against MapBuilder2D fed directly in log order as fusemap_offline does:
+// with one thread the trajectories must be identical, bit for bit.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <mutex>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/math.h"
+#include "fusemap/daemon/engine.h"
+#include "fusemap/daemon/lcm_input.h"
+#include "fusemap/daemon/map_outputs.h"
+#include "fusemap/io/lcm_conversions.h"
+#include "fusemap/io/lcm_log.h"
+#include "testing/synthetic_room.h"
+
+namespace fusemap {
+namespace daemon {
+namespace {
+
+constexpr double kStepM = 0.15;
+constexpr double kStartS = 1700000000.0;
+
+io::SlamConfig TestConfig() {
+  io::SlamConfig config;
+  auto& options = config.map_builder;
+  options.local_slam.use_imu = false;
+  options.local_slam.submaps.num_range_data = 10;
+  options.local_slam.use_online_correlative_scan_matching = false;
+  options.global_slam.optimize_every_n_nodes = 15;
+  auto& constraints = options.global_slam.constraint_builder;
+  constraints.sampling_ratio = 1.0;
+  constraints.max_constraint_distance_m = 3.0;
+  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
+  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
+  return config;
+}
+
+// 1.1 turns around the synthetic room's island: a scan per step, odometry (2 % scale error,
+// 0.3 deg yaw bias per step) twice per step, so loop closure has drift to remove.
+std::string WriteLog(const std::string& path) {
+  const auto walls = test_world::Room();
+  io::LcmLogWriter writer;
+  std::string error;
+  EXPECT_TRUE(writer.Open(path, &error)) << error;
+  std::mt19937 rng(42);
+  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
+  common::Rigid2d odom = test_world::ArcPose(0, kStepM);
+  for (int i = 0; i < num_scans; ++i) {
+    const double stamp_s = kStartS + 0.1 * i;
+    if (i > 0) {
+      const common::Rigid2d delta =
+          test_world::ArcPose(i - 1, kStepM).inverse() * test_world::ArcPose(i, kStepM);
+      const common::Rigid2d half(0.51 * delta.translation(),
+                                 0.5 * delta.angle_rad() + common::DegToRad(0.15));
+      odom = odom * half;
+      const auto mid = io::EncodeOdometry({stamp_s - 0.05, odom});
+      writer.Write("ODOMETRY", io::StampToUtime(stamp_s - 0.05), mid.data(), mid.size());
+      odom = odom * half;
+    }
+    const auto o = io::EncodeOdometry({stamp_s, odom});
+    writer.Write("ODOMETRY", io::StampToUtime(stamp_s), o.data(), o.size());
+    const auto scan = io::EncodeLaserScan(
+        test_world::SimulateScan(walls, test_world::ArcPose(i, kStepM), stamp_s, 0.02, &rng));
+    writer.Write("LIDAR", io::StampToUtime(stamp_s), scan.data(), scan.size());
+    const auto junk = std::vector<uint8_t>(5, 0xab);  // malformed, must not change anything
+    if (i % 20 == 0) writer.Write("LIDAR", io::StampToUtime(stamp_s), junk.data(), junk.size());
+  }
+  writer.Close();
+  return path;
+}
+
+// The offline runner's loop (tools/offline/main.cc), over the same log.
+std::vector<pose_graph::MapBuilder2D::TimedPose2d> OfflineTrajectory(const std::string& log,
+                                                                     const io::SlamConfig& config) {
+  common::InlineExecutor executor;
+  pose_graph::MapBuilder2D builder(config.map_builder, &executor);
+  std::vector<sensor::OdometryData> odometry;
+  io::LcmLogReader reader;
+  std::string error;
+  EXPECT_TRUE(reader.Open(log, &error)) << error;
+  io::LogEvent event;
+  while (reader.Next(&event)) {
+    const int size = static_cast<int>(event.data.size());
+    if (event.channel == config.channels.lidar) {
+      sensor::LaserScan scan;
+      if (io::DecodeLaserScan(event.data.data(), size, config.lidar, &scan, &error)) {
+        builder.AddScan(scan);
+      }
+    } else if (event.channel == config.channels.odometry) {
+      sensor::OdometryData data;
+      if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) continue;
+      if (!odometry.empty() && data.stamp_s < odometry.back().stamp_s) continue;
+      odometry.push_back(data);
+      builder.AddOdometry(data);
+    }
+  }
+  builder.Finish();
+  return pose_graph::DensifyWithOdometry(builder.NodePoses(), odometry);
+}
+
+class RecordingPublisher : public Publisher {
+ public:
+  void PublishPose(double, const common::Rigid2d&) override { ++poses; }
+  void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot& s) override {
+    ++submap_lists;
+    last_submaps = static_cast<int>(s.T_map_submaps.size());
+  }
+  void PublishLoopClosure(double, int n, const pose_graph::PoseGraph2D::Stats&, int) override {
+    loop_closures += n;
+  }
+  void PublishHealth(double, const HealthReport& r) override {
+    ++health;
+    last_health = r;
+  }
+  // Only the engine's publisher thread writes; the test reads after Finish() joined it.
+  int poses = 0, submap_lists = 0, loop_closures = 0, health = 0, last_submaps = 0;
+  HealthReport last_health;
+};
+
+TEST(ReplayTest, FileReplayWithOneThreadEqualsOfflineRunnerBitForBit) {
+  const std::string log = WriteLog(::testing::TempDir() + "/daemon_replay.lcm");
+  const io::SlamConfig config = TestConfig();
+  const auto expected = OfflineTrajectory(log, config);
+  ASSERT_GT(expected.size(), 100u);
+
+  DaemonOptions options;
+  options.sensor_queue_size = 8;  // small, to exercise blocking on the file provider
+  const std::string url = "file://" + log + "?speed=0";
+  ASSERT_EQ(PolicyForUrl(url), OverflowPolicy::kBlock);
+  RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
+  RecordingPublisher publisher;
+  Engine engine(config, options, 1, PolicyForUrl(url), &publisher, &quiet);
+  LcmInput input;
+  std::string error;
+  ASSERT_TRUE(input.Open(url, &error)) << error;
+  EXPECT_EQ(input.publish_handle(), nullptr);
+  input.Subscribe(&engine.intake());
+  engine.Start();
+  std::atomic<bool> stop{false};
+  EXPECT_EQ(input.Run(stop, 1000), LcmInput::End::kEndOfLog);
+  engine.Finish();
+
+  const auto actual = pose_graph::DensifyWithOdometry(engine.finished_builder().NodePoses(),
+                                                      engine.odometry());
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t i = 0; i < actual.size(); ++i) {
+    ASSERT_EQ(actual[i].stamp_s, expected[i].stamp_s) << i;
+    ASSERT_EQ(actual[i].pose.translation().x(), expected[i].pose.translation().x()) << i;
+    ASSERT_EQ(actual[i].pose.translation().y(), expected[i].pose.translation().y()) << i;
+    ASSERT_EQ(actual[i].pose.angle_rad(), expected[i].pose.angle_rad()) << i;
+  }
+  const auto stats = engine.finished_builder().pose_graph().stats();
+  EXPECT_GT(stats.loop_closures_found, 0);
+  EXPECT_GT(stats.optimizations, 0);
+  // The junk LIDAR messages were counted as malformed, nothing was dropped on overflow.
+  const HealthReport health = engine.Health();
+  EXPECT_EQ(health.channels[kLidarChannel].malformed, 6);  // i % 20 == 0 of 115 scans
+  EXPECT_EQ(health.channels[kLidarChannel].dropped, 0);
+  EXPECT_EQ(health.channels[kOdometryChannel].dropped, 0);
+  EXPECT_GT(publisher.poses, 0);
+  EXPECT_GE(publisher.submap_lists, 1);
+  EXPECT_EQ(publisher.last_submaps, stats.submaps);
+  EXPECT_EQ(publisher.loop_closures, stats.loop_closures_found);
+  EXPECT_GE(publisher.health, 1);
+  EXPECT_EQ(publisher.last_health.nodes, stats.nodes);
+
+  const std::string out = ::testing::TempDir() + "/daemon_replay_out";
+  ASSERT_TRUE(engine.WriteOutputs(out, &error)) << error;
+  for (const char* name : {"trajectory.tum", "nodes.tum", "map.pgm", "map.yaml", "map.png"}) {
+    FILE* f = std::fopen((out + "/" + name).c_str(), "rb");
+    EXPECT_NE(f, nullptr) << name;
+    if (f != nullptr) std::fclose(f);
+  }
+}
+
+TEST(ReplayTest, DirectFeedingWithThreadPoolFinishesEverything) {
+  const std::string log = WriteLog(::testing::TempDir() + "/daemon_direct.lcm");
+  RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
+  RecordingPublisher publisher;
+  DaemonOptions options;
+  Engine engine(TestConfig(), options, 2, OverflowPolicy::kBlock, &publisher, &quiet);
+  engine.Start();
+  io::LcmLogReader reader;
+  std::string error;
+  ASSERT_TRUE(reader.Open(log, &error)) << error;
+  io::LogEvent event;
+  int scans = 0;
+  while (reader.Next(&event)) {
+    if (engine.intake().OnMessage(event.channel, event.data.data(),
+                                  static_cast<int>(event.data.size())) &&
+        event.channel == "LIDAR") {
+      ++scans;
+    }
+  }
+  engine.Finish();
+  EXPECT_EQ(engine.scans_processed(), scans);
+  EXPECT_GT(engine.finished_builder().pose_graph().stats().optimizations, 0);
+  EXPECT_EQ(publisher.last_submaps, engine.finished_builder().pose_graph().stats().submaps);
+}
+
+}  // namespace
+}  // namespace daemon
+}  // namespace fusemap

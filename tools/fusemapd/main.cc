@@ -1,0 +1,200 @@
+// fusemapd: the mapping daemon. Subscribes to laser/odometry/IMU/RGB-D channels on an LCM bus
+// (or replays a log with file://), runs 2D SLAM and publishes poses, submaps and health.
+#include <signal.h>
+
+#include <atomic>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <string>
+#include <thread>
+
+#include "fusemap/daemon/daemon_options.h"
+#include "fusemap/daemon/engine.h"
+#include "fusemap/daemon/lcm_input.h"
+#include "fusemap/daemon/lcm_publisher.h"
+
+namespace fusemap {
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitRuntime = 1;
+constexpr int kExitUsage = 2;
+constexpr int kExitCheckpoint = 3;
+
+constexpr char kUsage[] =
+    "usage: fusemapd --config FILE --lcm-url URL --out DIR [--resume] [--threads N] [--quiet]\n"
+    "\n"
+    "Runs 2D SLAM on the configured LCM channels (the SLAM profile's channels:) and publishes\n"
+    "the pose per scan (channels.pose, fusemap_lcm.pose_t), the submap list (~5 Hz and after\n"
+    "each optimisation), loop-closure events and health at 1 Hz (daemon: key of the profile,\n"
+    "see config/daemon.yaml). On SIGINT/SIGTERM, or at the end of a file:// log, it processes\n"
+    "everything queued, runs the final optimisation and writes DIR/trajectory.tum, DIR/nodes.tum,\n"
+    "DIR/map.pgm, DIR/map.yaml and DIR/map.png (as fusemap_offline).\n"
+    "\n"
+    "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
+    "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
+    "                  replay a log as fast as possible (same result as fusemap_offline with\n"
+    "                  --threads 1; replay never drops: the reader waits for SLAM)\n"
+    "  --out DIR       output folder (created)\n"
+    "  --resume        continue from the checkpoint in DIR\n"
+    "  --threads N     workers for loop closure and optimisation (default 1: deterministic)\n"
+    "  --quiet         no health lines on stderr\n"
+    "  --help          this text\n"
+    "\n"
+    "exit codes: 0 clean shutdown (signal or end of log, outputs written), 1 runtime failure\n"
+    "(LCM error, outputs not writable, no scans), 2 usage or configuration error, 3 checkpoint\n"
+    "cannot be restored (--resume).\n";
+
+struct Args {
+  std::string config, lcm_url, out;
+  bool resume = false;
+  int threads = 1;
+  bool quiet = false;
+};
+
+bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&](std::string* out) {
+      if (i + 1 >= argc) {
+        *error = a + " needs a value";
+        return false;
+      }
+      *out = argv[++i];
+      return true;
+    };
+    if (a == "--config") {
+      if (!value(&args->config)) return false;
+    } else if (a == "--lcm-url") {
+      if (!value(&args->lcm_url)) return false;
+    } else if (a == "--out") {
+      if (!value(&args->out)) return false;
+    } else if (a == "--resume") {
+      args->resume = true;
+    } else if (a == "--quiet") {
+      args->quiet = true;
+    } else if (a == "--threads") {
+      std::string v;
+      if (!value(&v)) return false;
+      char* end = nullptr;
+      args->threads = static_cast<int>(std::strtol(v.c_str(), &end, 10));
+      if (v.empty() || *end != '\0' || args->threads < 1 || args->threads > 64) {
+        *error = "--threads takes a whole number from 1 to 64";
+        return false;
+      }
+    } else {
+      *error = "unknown argument '" + a + "'";
+      return false;
+    }
+  }
+  if (args->config.empty() || args->lcm_url.empty() || args->out.empty()) {
+    *error = "--config, --lcm-url and --out are required";
+    return false;
+  }
+  return true;
+}
+
+int Run(const Args& args) {
+  io::SlamConfig slam;
+  daemon::DaemonOptions options;
+  std::string error;
+  if (!daemon::LoadDaemonConfig(args.config, &slam, &options, &error)) {
+    std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  if (args.resume) {
+    // Checkpoint restore plugs in here (Engine::builder() before Start()).
+    std::fprintf(stderr, "fusemapd: --resume: checkpoints are not available in this build\n");
+    return kExitCheckpoint;
+  }
+  // Signals are taken synchronously by this thread (sigtimedwait below); every thread created
+  // from here on inherits the blocked mask, so no handler runs inside LCM or SLAM code.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGTERM);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  daemon::RateLimitedLog log(options.bad_message_log_interval_s);
+  const daemon::OverflowPolicy policy = daemon::PolicyForUrl(args.lcm_url);
+  daemon::LcmInput input;
+  if (!input.Open(args.lcm_url, &error)) {
+    std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
+    return kExitUsage;
+  }
+  daemon::LcmPublisher publisher(
+      input.publish_handle(),
+      {slam.channels.pose, options.submap_list_channel, options.loop_closure_channel,
+       options.health_channel},
+      !args.quiet);
+  auto engine = std::make_unique<daemon::Engine>(slam, options, args.threads, policy, &publisher,
+                                                 &log);
+  // Checkpointer and RGB-D consumer hooks: engine->SetCheckpointer(), SetRgbdConsumer().
+  input.Subscribe(&engine->intake());
+  engine->Start();
+
+  std::atomic<bool> stop{false};
+  std::atomic<bool> input_done{false};
+  daemon::LcmInput::End end = daemon::LcmInput::End::kStopped;
+  std::thread handler([&] {
+    end = input.Run(stop);
+    input_done = true;
+  });
+  const timespec poll{0, 100 * 1000 * 1000};
+  int signal_number = 0;
+  while (!input_done) {
+    const int s = sigtimedwait(&signals, nullptr, &poll);
+    if (s > 0) {
+      signal_number = s;
+      break;
+    }
+  }
+  stop = true;
+  // A kBlock intake may be waiting for room in a queue: closing it releases the handler.
+  engine->intake().Close();
+  handler.join();
+  if (!args.quiet) {
+    std::fprintf(stderr, "fusemapd: %s; finishing\n",
+                 signal_number != 0 ? strsignal(signal_number)
+                 : end == daemon::LcmInput::End::kEndOfLog ? "end of log"
+                                                           : "LCM error");
+  }
+  engine->Finish();
+  if (engine->scans_processed() == 0) {
+    std::fprintf(stderr, "fusemapd: no usable scans on channel %s; no outputs written\n",
+                 slam.channels.lidar.c_str());
+    return kExitRuntime;
+  }
+  if (!engine->WriteOutputs(args.out, &error)) {
+    std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
+    return kExitRuntime;
+  }
+  const auto health = engine->Health();
+  std::printf("%s\n", daemon::FormatHealth(health).c_str());
+  std::printf("wrote %s/trajectory.tum %s/map.pgm %s/map.yaml %s/map.png\n", args.out.c_str(),
+              args.out.c_str(), args.out.c_str(), args.out.c_str());
+  if (end == daemon::LcmInput::End::kError && signal_number == 0) return kExitRuntime;
+  return kExitOk;
+}
+
+}  // namespace
+}  // namespace fusemap
+
+int main(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
+      std::fputs(fusemap::kUsage, stdout);
+      return 0;
+    }
+  }
+  fusemap::Args args;
+  std::string error;
+  if (!fusemap::ParseArgs(argc, argv, &args, &error)) {
+    std::fprintf(stderr, "fusemapd: %s\n\n%s", error.c_str(), fusemap::kUsage);
+    return fusemap::kExitUsage;
+  }
+  return fusemap::Run(args);
+}
