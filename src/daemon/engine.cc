@@ -84,7 +84,7 @@ void Engine::Process(SensorMessage& message) {
       OutputEvent event;
       event.received = message.received;
       event.stamp_s = scan->stamp_s;
-      event.pose = *pose;
+      event.pose = pose->T_map_tracking;
       outputs_.Push(std::move(event));
     }
   } else if (auto* odometry = std::get_if<sensor::OdometryData>(&message.data)) {

@@ -17,14 +17,22 @@ MapBuilderOptions2D ParseMapBuilderOptions2D(common::ConfigReader& reader) {
 MapBuilder2D::MapBuilder2D(const MapBuilderOptions2D& options, common::Executor* executor)
     : local_(options.local_slam), pose_graph_(options.global_slam, executor) {}
 
-std::optional<common::Rigid2d> MapBuilder2D::AddScan(const sensor::LaserScan& scan) {
+std::optional<MapBuilder2D::ScanResult> MapBuilder2D::AddScan(const sensor::LaserScan& scan) {
   auto result = local_.AddScan(scan);
   if (!result) return std::nullopt;
   if (result->insertion) {
     pose_graph_.AddNode(result->stamp_s, result->T_local_tracking,
                         result->insertion->filtered_cloud, result->insertion->insertion_submaps);
   }
-  return pose_graph_.T_map_local() * result->T_local_tracking;
+  ScanResult out;
+  out.T_local_tracking = result->T_local_tracking;
+  out.T_map_tracking = pose_graph_.T_map_local() * result->T_local_tracking;
+  const auto active = local_.active_submaps();
+  if (!active.empty()) {
+    out.submap_id = pose_graph_.SubmapIndex(active.front().get());
+    out.T_local_submap = active.front()->T_local_submap();
+  }
+  return out;
 }
 
 MapBuilderState2D MapBuilder2D::ExportState() const {

@@ -289,6 +289,12 @@ common::Rigid2d PoseGraph2D::T_map_local() const {
   return T_map_nodes_.back() * nodes_.back().T_local_node.inverse();
 }
 
+int PoseGraph2D::SubmapIndex(const mapping::Submap2D* submap) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const auto it = submap_index_.find(submap);
+  return it == submap_index_.end() ? -1 : it->second;
+}
+
 PoseGraph2D::Stats PoseGraph2D::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   return stats_;

@@ -71,7 +71,15 @@ LoopRun DriveLoop(int optimize_every_n_nodes, common::Executor* executor) {
     }
     const double stamp_s = 0.1 * i;
     builder.AddOdometry({stamp_s, odom});
-    EXPECT_TRUE(builder.AddScan(SimulateScan(walls, TruePose(i), stamp_s, 0.02, &rng)));
+    const auto result = builder.AddScan(SimulateScan(walls, TruePose(i), stamp_s, 0.02, &rng));
+    EXPECT_TRUE(result);
+    // Every scan binds to a submap the pose graph knows, the one local SLAM matches against.
+    if (!result || result->submap_id < 0) {
+      ADD_FAILURE() << "scan " << i << " has no submap";
+      continue;
+    }
+    EXPECT_EQ(builder.pose_graph().submaps().at(result->submap_id)->T_local_submap().translation(),
+              result->T_local_submap.translation());
   }
   builder.Finish();
   run.stats = builder.pose_graph().stats();

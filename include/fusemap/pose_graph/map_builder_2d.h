@@ -42,8 +42,16 @@ class MapBuilder2D {
 
   void AddOdometry(const sensor::OdometryData& odometry) { local_.AddOdometry(odometry); }
   void AddImu(const sensor::ImuData& imu) { local_.AddImu(imu); }
-  // The global pose estimate T_map_tracking of the scan, or empty if the scan was unusable.
-  std::optional<common::Rigid2d> AddScan(const sensor::LaserScan& scan);
+  struct ScanResult {
+    common::Rigid2d T_map_tracking;  // the global estimate at the scan
+    common::Rigid2d T_local_tracking;
+    // The submap data taken at this time binds to (the oldest active one, the one scans are
+    // matched against), by pose-graph index, with its fixed local pose; -1 if none yet.
+    int submap_id = -1;
+    common::Rigid2d T_local_submap;
+  };
+  // Empty if the scan was unusable.
+  std::optional<ScanResult> AddScan(const sensor::LaserScan& scan);
   // Waits for background work and runs the final optimisation.
   void Finish() { pose_graph_.RunFinalOptimization(); }
 

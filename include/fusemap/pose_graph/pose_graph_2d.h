@@ -93,6 +93,8 @@ class PoseGraph2D {
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
   std::vector<double> node_stamps_s() const;
   common::Rigid2d T_map_local() const;
+  // The index of a submap a node was inserted into, or -1 if no node has reached it yet.
+  int SubmapIndex(const mapping::Submap2D* submap) const;
   Stats stats() const;
 
   // A consistent copy of the graph, taken under the lock without waiting for background
