@@ -1,216 +1,19 @@
 #include "fusemap/io/carmen_reader.h"
 
-#include <deque>
-#include <zlib.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <deque>
 #include <sstream>
 
+#include "fusemap/io/carmen_line_parser.h"
+#include "fusemap/io/carmen_stamp_repair.h"
 #include "fusemap/io/lcm_conversions.h"
 
 namespace fusemap {
 namespace io {
 namespace {
-
-constexpr double kPi = 3.14159265358979323846;
-
-// Reads lines from a plain or gzip file (gzopen reads both transparently).
-class LineReader {
- public:
-  ~LineReader() { Close(); }
-  bool Open(const std::string& path) {
-    Close();
-    file_ = gzopen(path.c_str(), "rb");
-    return file_ != nullptr;
-  }
-  void Close() {
-    if (file_ != nullptr) gzclose(file_);
-    file_ = nullptr;
-  }
-  bool Rewind() { return gzrewind(file_) == 0; }
-  // False at end of file. *complete is false for a last line without its newline.
-  bool ReadLine(std::string* line, bool* complete) {
-    line->clear();
-    char buffer[65536];
-    while (gzgets(file_, buffer, sizeof(buffer)) != nullptr) {
-      line->append(buffer);
-      if (!line->empty() && line->back() == '\n') {
-        *complete = true;
-        return true;
-      }
-    }
-    *complete = false;
-    return !line->empty();
-  }
-
- private:
-  gzFile file_ = nullptr;
-};
-
-// Splits in place: separators become '\0' and tokens point into `line`.
-std::vector<char*> Tokenize(std::string* line) {
-  std::vector<char*> tokens;
-  char* p = line->data();
-  while (*p != '\0') {
-    while (*p == ' ' || *p == '\t' || *p == '\r' || *p == '\n') *p++ = '\0';
-    if (*p == '\0') break;
-    tokens.push_back(p);
-    while (*p != '\0' && *p != ' ' && *p != '\t' && *p != '\r' && *p != '\n') ++p;
-  }
-  return tokens;
-}
-
-enum class MessageType { kOther, kOdom, kFlaser, kRobotLaser };
-
-MessageType TypeOf(const char* tag) {
-  if (std::strcmp(tag, "ODOM") == 0) return MessageType::kOdom;
-  if (std::strcmp(tag, "FLASER") == 0) return MessageType::kFlaser;
-  if (std::strcmp(tag, "ROBOTLASER1") == 0) return MessageType::kRobotLaser;
-  return MessageType::kOther;
-}
-
-// The fields of one ODOM, FLASER or ROBOTLASER1 line that the reader uses.
-struct ParsedMessage {
-  MessageType type = MessageType::kOther;
-  std::vector<float> ranges;
-  std::vector<float> remissions;
-  double start_angle_rad = 0.0, increment_rad = 0.0, max_range_m = 0.0;
-  double pose[3] = {0.0, 0.0, 0.0};  // ODOM pose, or FLASER's (estimated) pose
-  double velocity[2] = {0.0, 0.0};
-  double accel = 0.0;  // ODOM only
-  common::Rigid2d T_base_laser;
-  double times[2] = {0.0, 0.0};  // timestamp, logger_timestamp
-};
-
-class FieldParser {
- public:
-  explicit FieldParser(const std::vector<char*>& tokens) : tokens_(tokens) {}
-  bool Number(size_t i, double* value, std::string* reason) const {
-    char* end = nullptr;
-    *value = std::strtod(tokens_[i], &end);
-    if (end == tokens_[i] || *end != '\0' || !std::isfinite(*value)) {
-      *reason = "non-numeric field " + std::to_string(i) + " '" + tokens_[i] + "'";
-      return false;
-    }
-    return true;
-  }
-  bool Count(size_t i, const char* what, int* value, std::string* reason) const {
-    double v = 0.0;
-    if (!Number(i, &v, reason)) return false;
-    if (v != std::floor(v) || v < 0 || v > kMaxLaserBeams) {
-      *reason = std::string("absurd ") + what + " " + tokens_[i];
-      return false;
-    }
-    *value = static_cast<int>(v);
-    return true;
-  }
-  bool Floats(size_t first, int n, std::vector<float>* out, std::string* reason) const {
-    out->resize(n);
-    for (int k = 0; k < n; ++k) {
-      double v = 0.0;
-      if (!Number(first + k, &v, reason)) return false;
-      (*out)[k] = static_cast<float>(v);
-    }
-    return true;
-  }
-  bool Expect(size_t n, bool complete, const std::string& layout, std::string* reason) const {
-    if (tokens_.size() == n) return true;
-    *reason = (complete ? std::string("field count does not match ") : "truncated line: ") +
-              layout + ": expected " + std::to_string(n) + " fields, found " +
-              std::to_string(tokens_.size());
-    return false;
-  }
-
- private:
-  const std::vector<char*>& tokens_;
-};
-
-bool ParseMessage(const std::vector<char*>& tokens, bool complete, ParsedMessage* out,
-                  std::string* reason) {
-  const FieldParser f(tokens);
-  out->type = TypeOf(tokens[0]);
-  const size_t n_tok = tokens.size();
-  switch (out->type) {
-    case MessageType::kOdom: {
-      // ODOM x y theta tv rv accel timestamp host logger_timestamp
-      if (!f.Expect(10, complete, "ODOM x y theta tv rv accel ts host logger_ts", reason)) {
-        return false;
-      }
-      for (int k = 0; k < 3; ++k) {
-        if (!f.Number(1 + k, &out->pose[k], reason)) return false;
-      }
-      return f.Number(4, &out->velocity[0], reason) && f.Number(5, &out->velocity[1], reason) &&
-             f.Number(6, &out->accel, reason) && f.Number(7, &out->times[0], reason) &&
-             f.Number(9, &out->times[1], reason);
-    }
-    case MessageType::kFlaser: {
-      // FLASER N r0..rN-1 x y theta odom_x odom_y odom_theta timestamp host logger_timestamp
-      int n = 0;
-      if (n_tok < 2) return f.Expect(2, complete, "FLASER N ...", reason);
-      if (!f.Count(1, "beam count", &n, reason)) return false;
-      if (n < 2) {
-        *reason = "absurd beam count " + std::to_string(n);
-        return false;
-      }
-      if (!f.Expect(n + 11, complete, "FLASER beam count N=" + std::to_string(n), reason) ||
-          !f.Floats(2, n, &out->ranges, reason)) {
-        return false;
-      }
-      // GMapping's convention (gfs2rec): 180/181 beams at 1 deg, 360/361 at 0.5 deg, from
-      // -90 deg. Generalised: an odd N spans [-90, +90] inclusive, an even N [-90, +90).
-      out->start_angle_rad = -kPi / 2.0;
-      out->increment_rad = kPi / static_cast<double>(n - n % 2);
-      for (int k = 0; k < 3; ++k) {
-        if (!f.Number(2 + n + k, &out->pose[k], reason)) return false;
-      }
-      return f.Number(2 + n + 6, &out->times[0], reason) &&
-             f.Number(2 + n + 8, &out->times[1], reason);
-    }
-    case MessageType::kRobotLaser: {
-      // ROBOTLASER1 type start fov res max_range accuracy remission_mode N r.. M rem..
-      //   laser_x laser_y laser_theta robot_x robot_y robot_theta tv rv fwd side turn_axis
-      //   timestamp host logger_timestamp
-      int n = 0, m = 0;
-      if (n_tok < 10) return f.Expect(10, complete, "ROBOTLASER1 header", reason);
-      double fov = 0.0;
-      if (!f.Number(2, &out->start_angle_rad, reason) || !f.Number(3, &fov, reason) ||
-          !f.Number(4, &out->increment_rad, reason) || !f.Number(5, &out->max_range_m, reason) ||
-          !f.Count(8, "beam count", &n, reason)) {
-        return false;
-      }
-      if (n_tok < static_cast<size_t>(n) + 10) {
-        return f.Expect(n + 10, complete, "ROBOTLASER1 beam count", reason);
-      }
-      if (!f.Count(9 + n, "remission count", &m, reason)) return false;
-      if (m != 0 && m != n) {
-        *reason = "remission count " + std::to_string(m) + " is neither 0 nor " +
-                  std::to_string(n);
-        return false;
-      }
-      if (!f.Expect(n + m + 24, complete, "ROBOTLASER1 counts", reason) ||
-          !f.Floats(9, n, &out->ranges, reason) ||
-          !f.Floats(10 + n, m, &out->remissions, reason)) {
-        return false;
-      }
-      double p[6];
-      for (int k = 0; k < 6; ++k) {
-        if (!f.Number(10 + n + m + k, &p[k], reason)) return false;
-      }
-      out->T_base_laser =
-          common::Rigid2d(p[3], p[4], p[5]).inverse() * common::Rigid2d(p[0], p[1], p[2]);
-      return f.Number(16 + n + m, &out->velocity[0], reason) &&
-             f.Number(17 + n + m, &out->velocity[1], reason) &&
-             f.Number(21 + n + m, &out->times[0], reason) &&
-             f.Number(23 + n + m, &out->times[1], reason);
-    }
-    case MessageType::kOther:
-      break;
-  }
-  return true;
-}
 
 // Statistics of one candidate time field over all timed lines, in file order.
 struct TimeFieldStats {
@@ -246,45 +49,23 @@ struct TimeFieldStats {
   }
 };
 
-// GMapping's gfs output interleaves its own pose estimates as ODOM lines: right after each
-// FLASER (repeating that scan's pose) and, in orebro, after NEFF with zero time and motion.
-// Neither is wheel odometry. Feed every non-empty line in order.
-class GmappingPoseFilter {
- public:
-  bool IsEstimate(const char* tag, const ParsedMessage* msg) {
-    bool estimate = false;
-    if (msg != nullptr && msg->type == MessageType::kOdom) {
-      const bool repeats_scan = previous_ == Previous::kFlaser &&
-                                std::equal(msg->pose, msg->pose + 3, flaser_pose_);
-      const bool zero = msg->times[0] == 0.0 && msg->times[1] == 0.0 &&
-                        msg->velocity[0] == 0.0 && msg->velocity[1] == 0.0 && msg->accel == 0.0;
-      estimate = repeats_scan || (previous_ == Previous::kNeff && zero);
-    }
-    previous_ = std::strcmp(tag, "NEFF") == 0 ? Previous::kNeff : Previous::kOther;
-    if (msg != nullptr && msg->type == MessageType::kFlaser) {
-      previous_ = Previous::kFlaser;
-      std::copy(msg->pose, msg->pose + 3, flaser_pose_);
-    }
-    return estimate;
-  }
-
- private:
-  enum class Previous { kOther, kFlaser, kNeff };
-  Previous previous_ = Previous::kOther;
-  double flaser_pose_[3] = {0.0, 0.0, 0.0};
-};
-
 struct Pending {
   double stamp_s;
   int64_t seq;
   CarmenRecord record;
+  // The stamp as printed, the width of its rounding interval, and whether the record happened
+  // at a new instant rather than together with the record before it (see SpreadOverRounding).
+  double printed_s = 0.0;
+  double resolution_s = 0.0;
+  bool starts_instant = true;
+  bool spread = false;  // stamp_s already spread over the rounding interval
 };
 
 }  // namespace
 
 struct CarmenReader::Impl {
   std::string path;
-  LineReader reader;
+  CarmenLineReader reader;
   std::string line;
   int line_no = 0;
   int time_field = -1;  // 0 timestamp, 1 logger_timestamp, -1 synthesized from line order
@@ -301,7 +82,66 @@ struct CarmenReader::Impl {
   double newest_stamp_s = -INFINITY;
   double last_output_s = -INFINITY;
   bool at_eof = false;
+  bool last_kept_odometry = false;  // the last record queued was an ODOM line
 };
+
+namespace {
+
+// Spreads the run of queued records, from the first, that print the same stamp (all of it is
+// queued; see Next). Returns the run's length if it held more than one instant, else 0.
+int SpreadFirstRun(std::deque<Pending>* pending) {
+  if (pending->empty() || pending->front().spread) return 0;
+  const double printed_s = pending->front().printed_s;
+  std::vector<bool> starts_instant;
+  for (const Pending& p : *pending) {
+    if (p.spread || p.printed_s != printed_s) break;
+    starts_instant.push_back(p.starts_instant);
+  }
+  const std::vector<double> stamps =
+      SpreadOverRounding(printed_s, pending->front().resolution_s, starts_instant);
+  int instants = 0;
+  for (size_t i = 0; i < stamps.size(); ++i) {
+    Pending& p = (*pending)[i];
+    if (i == 0 || p.starts_instant) ++instants;
+    p.stamp_s = stamps[i];
+    p.spread = true;
+  }
+  return instants > 1 ? static_cast<int>(stamps.size()) : 0;
+}
+
+// Earliest time a queued record can have happened: its stamp once spread, else the start of
+// its rounding interval.
+double EarliestS(const Pending& p) {
+  return p.spread ? p.stamp_s : p.printed_s - 0.5 * p.resolution_s;
+}
+
+// File order is the true order, so a front record stamped later than a record after it
+// happened before that record. It and the late records right after it that wait for the same
+// earlier stamp are placed evenly between the last output stamp and that stamp (instead of
+// piling onto it). False if the front is not late.
+bool LowerLateFront(const std::deque<Pending>& pending, double last_output_s,
+                    double* stamp_s) {
+  const size_t n = pending.size();
+  if (n < 2) return false;
+  // later_min[i]: the smallest EarliestS after record i.
+  std::vector<double> later_min(n, INFINITY);
+  for (size_t i = n - 1; i > 0; --i) {
+    later_min[i - 1] = std::min(later_min[i], EarliestS(pending[i]));
+  }
+  const double target_s = later_min[0];
+  if (!(target_s < pending[0].stamp_s)) return false;
+  size_t late = 1;
+  while (late < n && later_min[late] == target_s && EarliestS(pending[late]) > target_s) {
+    ++late;
+  }
+  *stamp_s = target_s;
+  if (std::isfinite(last_output_s) && last_output_s < target_s) {
+    *stamp_s = last_output_s + (target_s - last_output_s) / static_cast<double>(late + 1);
+  }
+  return true;
+}
+
+}  // namespace
 
 bool CarmenOptions::IsValid(std::string* error) const {
   std::string reason;
@@ -329,7 +169,7 @@ std::string CarmenSummary::ToString() const {
   std::ostringstream s;
   s << "scans=" << lasers << " odometry=" << odometry << " skipped=" << skipped_bad
     << " gmapping_poses_dropped=" << gmapping_poses_dropped << " odometry_rebases_undone=" << odometry_rebases_undone
-    << " repaired_stamps=" << repaired_stamps
+    << " spread_stamps=" << spread_stamps << " repaired_stamps=" << repaired_stamps
     << " clamped=" << clamped_stamps << " time_policy=" << time_policy << " ("
     << time_reason << ") range_max_m=" << range_max_m << " (" << range_max_source << ")"
     << " lines=" << lines << " types=";
@@ -367,20 +207,20 @@ bool CarmenReader::Open(const std::string& path, std::string* error) {
   bool complete = false;
   GmappingPoseFilter gmapping_filter;
   while (impl_->reader.ReadLine(&impl_->line, &complete)) {
-    std::vector<char*> tokens = Tokenize(&impl_->line);
+    std::vector<char*> tokens = TokenizeCarmenLine(&impl_->line);
     if (tokens.empty()) continue;
     if (std::strcmp(tokens[0], "PARAM") == 0 && tokens.size() >= 3 &&
         std::strstr(tokens[1], "front_laser_max") != nullptr) {
       param_range_max_m = std::atof(tokens[2]);
     }
-    ParsedMessage msg;
-    const bool ok = TypeOf(tokens[0]) != MessageType::kOther &&
-                    ParseMessage(tokens, complete, &msg, &reason);
+    CarmenMessage msg;
+    const bool ok = CarmenTypeOf(tokens[0]) != CarmenMessageType::kOther &&
+                    ParseCarmenMessage(tokens, complete, &msg, &reason);
     const bool estimate = gmapping_filter.IsEstimate(tokens[0], ok ? &msg : nullptr);
     if (!ok || (estimate && options_.drop_gmapping_poses)) continue;
     stats[0].Add(msg.times[0]);
     stats[1].Add(msg.times[1]);
-    if (msg.type == MessageType::kFlaser) {
+    if (msg.type == CarmenMessageType::kFlaser) {
       for (float r : msg.ranges) ++range_counts[r];
       beams += static_cast<int64_t>(msg.ranges.size());
     }
@@ -451,24 +291,27 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
   // Read ahead until every later line that could still have a smaller stamp than the oldest
   // pending one (within the window) is in memory.
   const double window_s = options_.reorder_window_s;
+  // Also until the run of records printing the front's stamp is complete, so it can be spread.
   while (!im.at_eof &&
-         (im.pending.empty() || im.newest_stamp_s <= im.pending.front().stamp_s + window_s)) {
+         (im.pending.empty() || im.newest_stamp_s <= im.pending.front().stamp_s + window_s ||
+          (!im.pending.front().spread &&
+           im.pending.back().printed_s == im.pending.front().printed_s))) {
     if (!im.reader.ReadLine(&im.line, &complete)) {
       im.at_eof = true;
       break;
     }
     ++im.line_no;
-    std::vector<char*> tokens = Tokenize(&im.line);
+    std::vector<char*> tokens = TokenizeCarmenLine(&im.line);
     if (tokens.empty()) continue;
     ++summary_.lines;
     ++summary_.lines_by_type[tokens[0]];
-    ParsedMessage msg;
+    CarmenMessage msg;
     std::string reason;
-    if (TypeOf(tokens[0]) == MessageType::kOther) {
+    if (CarmenTypeOf(tokens[0]) == CarmenMessageType::kOther) {
       im.gmapping_filter.IsEstimate(tokens[0], nullptr);
       continue;
     }
-    if (!ParseMessage(tokens, complete, &msg, &reason)) {
+    if (!ParseCarmenMessage(tokens, complete, &msg, &reason)) {
       const std::string where = im.path + ":" + std::to_string(im.line_no) + ": " + reason;
       im.gmapping_filter.IsEstimate(tokens[0], nullptr);
       if (!options_.skip_bad) {
@@ -479,7 +322,8 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
       if (summary_.first_skip_reasons.size() < 5) summary_.first_skip_reasons.push_back(where);
       continue;
     }
-    if (im.gmapping_filter.IsEstimate(tokens[0], &msg) && options_.drop_gmapping_poses) {
+    const bool gmapping_estimate = im.gmapping_filter.IsEstimate(tokens[0], &msg);
+    if (gmapping_estimate && options_.drop_gmapping_poses) {
       ++summary_.gmapping_poses_dropped;
       if (im.have_raw_odometry) {
         const common::Rigid2d estimate(msg.pose[0], msg.pose[1], msg.pose[2]);
@@ -497,9 +341,18 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
     p.seq = im.seq++;
     p.stamp_s = im.time_field >= 0 ? msg.times[im.time_field]
                                    : static_cast<double>(p.seq) * options_.synthetic_period_s;
+    p.printed_s = p.stamp_s;
+    if (im.time_field >= 0) {
+      p.resolution_s = PrintedStampResolution(tokens[msg.time_tokens[im.time_field]]);
+    }
+    // A scan happened with the ODOM line printed just before it, and GMapping's kept estimate
+    // repeats the scan before it.
+    p.starts_instant = !((msg.type != CarmenMessageType::kOdom && im.last_kept_odometry) ||
+                         gmapping_estimate);
+    im.last_kept_odometry = msg.type == CarmenMessageType::kOdom;
     CarmenRecord& r = p.record;
     r.line = im.line_no;
-    if (msg.type == MessageType::kOdom) {
+    if (msg.type == CarmenMessageType::kOdom) {
       r.kind = CarmenRecord::Kind::kOdometry;
       const common::Rigid2d raw(msg.pose[0], msg.pose[1], msg.pose[2]);
       im.last_raw_odometry = raw;
@@ -513,7 +366,7 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
       r.scan.angle_min_rad = static_cast<float>(msg.start_angle_rad);
       r.scan.angle_increment_rad = static_cast<float>(msg.increment_rad);
       r.scan.range_min_m = 0.f;
-      const bool use_line_max = msg.type == MessageType::kRobotLaser && msg.max_range_m > 0.0 &&
+      const bool use_line_max = msg.type == CarmenMessageType::kRobotLaser && msg.max_range_m > 0.0 &&
                                 options_.range_max_m == 0.0;
       r.scan.range_max_m =
           static_cast<float>(use_line_max ? msg.max_range_m : summary_.range_max_m);
@@ -526,14 +379,12 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
   }
   if (im.pending.empty()) return false;
 
-  Pending p = std::move(im.pending.front());
-  im.pending.pop_front();
-  double later_min_s = INFINITY;
-  for (const Pending& later : im.pending) later_min_s = std::min(later_min_s, later.stamp_s);
-  if (later_min_s < p.stamp_s) {
-    p.stamp_s = later_min_s;
+  summary_.spread_stamps += SpreadFirstRun(&im.pending);
+  if (LowerLateFront(im.pending, im.last_output_s, &im.pending.front().stamp_s)) {
     ++summary_.repaired_stamps;
   }
+  Pending p = std::move(im.pending.front());
+  im.pending.pop_front();
   if (p.stamp_s < im.last_output_s) {
     p.stamp_s = im.last_output_s;
     ++summary_.clamped_stamps;

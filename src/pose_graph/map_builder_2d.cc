@@ -101,21 +101,34 @@ std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
     const std::vector<MapBuilder2D::TimedPose2d>& nodes,
     const std::vector<sensor::OdometryData>& odometry) {
   if (odometry.empty() || nodes.empty()) return nodes;
+  // Each node's pose as predicted from its odometry: T_map_node * T_odom_node^-1 maps odometry
+  // poses into the map frame as that node sees them.
+  std::vector<common::Rigid2d> T_map_odom;
+  T_map_odom.reserve(nodes.size());
+  for (const auto& node : nodes) {
+    T_map_odom.push_back(node.pose * OdometryAt(odometry, node.stamp_s).inverse());
+  }
   std::vector<MapBuilder2D::TimedPose2d> dense;
   dense.reserve(odometry.size());
-  size_t nearest = 0;
+  size_t next = 0;  // first node after the sample
   for (const auto& sample : odometry) {
-    // Both sequences are time-ordered, so the nearest node only moves forward.
-    while (nearest + 1 < nodes.size() &&
-           std::abs(nodes[nearest + 1].stamp_s - sample.stamp_s) <=
-               std::abs(nodes[nearest].stamp_s - sample.stamp_s)) {
-      ++nearest;
-    }
     // Repeated odometry stamps would give a trajectory with two poses at one time.
     if (!dense.empty() && sample.stamp_s <= dense.back().stamp_s) continue;
-    const auto& node = nodes[nearest];
-    const common::Rigid2d T_odom_node = OdometryAt(odometry, node.stamp_s);
-    dense.push_back({sample.stamp_s, node.pose * (T_odom_node.inverse() * sample.pose)});
+    while (next < nodes.size() && nodes[next].stamp_s <= sample.stamp_s) ++next;
+    common::Rigid2d pose;
+    if (next == 0 || next == nodes.size()) {
+      pose = T_map_odom[next == 0 ? 0 : next - 1] * sample.pose;
+    } else {
+      // Between two nodes the odometry drift accumulated from one to the other is spread over
+      // the interval: blend the two nodes' predictions by time fraction.
+      const auto& a = nodes[next - 1];
+      const auto& b = nodes[next];
+      const double span = b.stamp_s - a.stamp_s;
+      const double fraction = span > 0 ? (sample.stamp_s - a.stamp_s) / span : 0.0;
+      pose = common::Interpolate(T_map_odom[next - 1] * sample.pose,
+                                 T_map_odom[next] * sample.pose, fraction);
+    }
+    dense.push_back({sample.stamp_s, pose});
   }
   return dense;
 }

@@ -214,10 +214,63 @@ TEST(CarmenReaderTest, KeepsFileOrderAndRepairsLateStampsSoTheyNeverDecrease) {
       EXPECT_LE(StampOf(records[i - 1]), StampOf(records[i]));
     }
   }
-  EXPECT_EQ(summary.repaired_stamps, 1);  // line 2, lowered to 1.9
-  EXPECT_DOUBLE_EQ(StampOf(records[1]), 1.9);
+  // Line 2 happened between line 1 (1.8) and line 3, which printed 1.9 to 5 significant digits
+  // after the point (1.9 - 5e-6 at the earliest): midway between them.
+  EXPECT_EQ(summary.repaired_stamps, 1);
+  EXPECT_NEAR(StampOf(records[1]), 0.5 * (1.8 + 1.9 - 5e-6), 1e-12);
   EXPECT_DOUBLE_EQ(StampOf(records[3]), 1.9);  // the scan keeps its own stamp
   EXPECT_EQ(summary.clamped_stamps, 0);
+  std::remove(path.c_str());
+}
+
+TEST(CarmenReaderTest, SpreadsRecordsThatPrintTheSameRoundedStamp) {
+  // GMapping prints 6 significant digits: three ODOM lines and the scan taken with the last
+  // one all read 1401.34 while the robot moved. GMapping's pose echo after the scan is dropped.
+  const std::string path = WriteFile(
+      "spread.log",
+      "ODOM 0.0 0 0 0 0 0 1401.33 pippo 1401.33\n"
+      "ODOM 0.1 0 0 0 0 0 1401.34 pippo 1401.34\n"
+      "ODOM 0.2 0 0 0 0 0 1401.34 pippo 1401.34\n"
+      "ODOM 0.3 0 0 0 0 0 1401.34 pippo 1401.34\n"
+      "FLASER 2 1 2 5 5 0 0 0 0 1401.34 pippo 1401.34\n"
+      "ODOM 5 5 0 0 0 0 1401.34 pippo 1401.34\n"
+      "ODOM 0.4 0 0 0 0 0 1401.35 pippo 1401.35\n");
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, CarmenOptions(), &summary, &error);
+  ASSERT_EQ(records.size(), 6u) << error;
+  const double step = 0.01 / 3.0;
+  const std::vector<double> expected = {1401.33,
+                                        1401.335 + 0.5 * step,
+                                        1401.335 + 1.5 * step,
+                                        1401.335 + 2.5 * step,
+                                        1401.335 + 2.5 * step,  // the scan, with its ODOM
+                                        1401.35};
+  for (size_t i = 0; i < records.size(); ++i) {
+    EXPECT_NEAR(StampOf(records[i]), expected[i], 1e-9) << "record " << i;
+  }
+  EXPECT_EQ(records[4].kind, CarmenRecord::Kind::kLaser);
+  EXPECT_EQ(summary.spread_stamps, 4);
+  EXPECT_EQ(summary.repaired_stamps, 0);
+  EXPECT_NE(summary.ToString().find("spread_stamps=4"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+TEST(CarmenReaderTest, MicrosecondStampsAreNotSpreadBeyondTheirText) {
+  // "%f" stamps that repeat are one instant to within 1 us.
+  const std::string path = WriteFile(
+      "spread_us.log",
+      "ODOM 0.0 0 0 0 0 0 7.000000 pippo 7.000000\n"
+      "ODOM 0.1 0 0 0 0 0 7.000000 pippo 7.000000\n"
+      "ODOM 0.2 0 0 0 0 0 7.100000 pippo 7.100000\n");
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, CarmenOptions(), &summary, &error);
+  ASSERT_EQ(records.size(), 3u) << error;
+  EXPECT_NEAR(StampOf(records[0]), 7.0 - 0.25e-6, 1e-12);
+  EXPECT_NEAR(StampOf(records[1]), 7.0 + 0.25e-6, 1e-12);
+  EXPECT_DOUBLE_EQ(StampOf(records[2]), 7.1);
+  EXPECT_EQ(summary.spread_stamps, 2);
   std::remove(path.c_str());
 }
 

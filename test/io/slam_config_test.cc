@@ -43,6 +43,8 @@ TEST(SlamConfigTest, LoadsIntelConfig) {
   const auto& global = config.map_builder.global_slam;
   EXPECT_EQ(global.optimize_every_n_nodes, 35);
   EXPECT_DOUBLE_EQ(global.constraint_builder.sampling_ratio, 0.3);
+  EXPECT_DOUBLE_EQ(global.constraint_builder.loop_closure_translation_weight, 1.1e6);
+  EXPECT_DOUBLE_EQ(global.constraint_builder.loop_closure_rotation_weight, 1e7);
   EXPECT_DOUBLE_EQ(global.constraint_builder.fast_correlative_scan_matcher.linear_search_window_m,
                    4.0);
   EXPECT_EQ(global.final_optimization_iterations, 200);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -122,11 +123,13 @@ TEST(MapBuilder2DTest, ThreadPoolRunFindsLoopClosures) {
 // Ground truth G(t) of a robot driving a curve.
 common::Rigid2d G(double t) { return common::Rigid2d(t, 0.5 * t * t, 0.3 * t); }
 
-TEST(DensifyWithOdometryTest, ComposesOdometryOntoNearestNode) {
+TEST(DensifyWithOdometryTest, BlendsTheCorrectionsOfBothNeighbouringNodes) {
   // The odometry frame is off from the map frame by X; the node at t = 2 carries a correction C
-  // (as after a loop closure) which must reach the samples nearest to it and only those.
+  // (as after a loop closure), the node at t = 1 none. Between them the correction grows
+  // linearly in time; outside them the nearest node's correction applies.
   const common::Rigid2d X(3.0, -1.0, 0.7);
-  const common::Rigid2d C(0.2, 0.1, 0.05);
+  const Eigen::Vector2d c(0.2, 0.1);
+  const common::Rigid2d C(c.x(), c.y(), 0.0);
   const std::vector<MapBuilder2D::TimedPose2d> nodes = {{1.0, G(1.0)}, {2.0, C * G(2.0)}};
   std::vector<sensor::OdometryData> odometry;
   for (const double t : {0.5, 1.0, 1.25, 1.5, 1.5, 2.0, 2.5}) odometry.push_back({t, X * G(t)});
@@ -135,15 +138,45 @@ TEST(DensifyWithOdometryTest, ComposesOdometryOntoNearestNode) {
   ASSERT_EQ(dense.size(), 6u);  // the repeated stamp 1.5 is dropped
   const std::vector<double> stamps = {0.5, 1.0, 1.25, 1.5, 2.0, 2.5};
   for (size_t i = 0; i < dense.size(); ++i) {
-    EXPECT_DOUBLE_EQ(dense[i].stamp_s, stamps[i]);
-    // 1.5 is equally far from both nodes; ties go to the later one.
-    const common::Rigid2d expected = stamps[i] < 1.5 ? G(stamps[i]) : C * G(stamps[i]);
-    EXPECT_NEAR(dense[i].pose.x(), expected.x(), 1e-9) << "t " << stamps[i];
-    EXPECT_NEAR(dense[i].pose.y(), expected.y(), 1e-9) << "t " << stamps[i];
-    EXPECT_NEAR(common::NormalizeAngle(dense[i].pose.angle_rad() - expected.angle_rad()), 0.0,
-                1e-9)
-        << "t " << stamps[i];
+    const double t = stamps[i];
+    EXPECT_DOUBLE_EQ(dense[i].stamp_s, t);
+    const double fraction = std::clamp(t - 1.0, 0.0, 1.0);
+    const Eigen::Vector2d expected = G(t).translation() + fraction * c;
+    EXPECT_NEAR(dense[i].pose.x(), expected.x(), 1e-9) << "t " << t;
+    EXPECT_NEAR(dense[i].pose.y(), expected.y(), 1e-9) << "t " << t;
+    EXPECT_NEAR(common::NormalizeAngle(dense[i].pose.angle_rad() - G(t).angle_rad()), 0.0, 1e-9)
+        << "t " << t;
   }
+}
+
+TEST(DensifyWithOdometryTest, PassesThroughNodesWithoutJumps) {
+  // Rotational corrections on both nodes: the dense trajectory must meet each node at its stamp
+  // and move smoothly in between (composing onto the nearest node alone jumped at t = 1.5).
+  const common::Rigid2d X(-2.0, 4.0, -1.1);
+  const std::vector<MapBuilder2D::TimedPose2d> nodes = {
+      {1.0, common::Rigid2d(0.1, -0.2, 0.05) * G(1.0)},
+      {2.0, common::Rigid2d(-0.3, 0.2, -0.08) * G(2.0)}};
+  std::vector<sensor::OdometryData> odometry;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 1.0 + 0.01 * k;
+    odometry.push_back({t, X * G(t)});
+  }
+  const auto dense = DensifyWithOdometry(nodes, odometry);
+  ASSERT_EQ(dense.size(), odometry.size());
+  for (const size_t i : {size_t{0}, dense.size() - 1}) {
+    const auto& node = nodes[i == 0 ? 0 : 1];
+    EXPECT_NEAR((dense[i].pose.translation() - node.pose.translation()).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(common::NormalizeAngle(dense[i].pose.angle_rad() - node.pose.angle_rad()), 0.0,
+                1e-9);
+  }
+  // Ground truth moves at most |dG/dt| * 0.01 s <= 0.03 m per step here; the blended
+  // correction adds at most |0.4, 0.4| * 0.01 plus the rotation's lever arm.
+  double max_step_m = 0.0;
+  for (size_t i = 1; i < dense.size(); ++i) {
+    max_step_m = std::max(
+        max_step_m, (dense[i].pose.translation() - dense[i - 1].pose.translation()).norm());
+  }
+  EXPECT_LT(max_step_m, 0.05);
 }
 
 TEST(DensifyWithOdometryTest, NodeBetweenOdometrySamplesIsInterpolated) {

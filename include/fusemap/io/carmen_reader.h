@@ -23,9 +23,11 @@ struct CarmenOptions {
   double synthetic_period_s = 0.1;
   // Records keep file order, which is the order things happened: in GMapping's logs the poses
   // are smooth in file order while some stamps are not (printed with 6 significant digits,
-  // and a few lines carry a late stamp). A stamp larger than one of the stamps that follow it
-  // within this window is lowered to the smallest of them; larger backward steps make the
-  // timestamps count as unusable.
+  // and some lines carry a late stamp). Runs of records printing one rounded stamp are spread
+  // over its rounding interval (carmen_stamp_repair.h). A stamp larger than one that follows
+  // it within this window is lowered: the late records are placed evenly between the previous
+  // output stamp and the earliest later one. Larger backward steps make the timestamps count
+  // as unusable.
   double reorder_window_s = 2.0;
   // Drop the ODOM line GMapping writes right after each FLASER repeating that scan's pose:
   // it is the filter's estimate, not wheel odometry.
@@ -61,7 +63,9 @@ struct CarmenSummary {
   int gmapping_poses_dropped = 0;
   // Jumps of the ODOM stream onto GMapping's estimate after a scan, removed (see the reader).
   int odometry_rebases_undone = 0;
-  int repaired_stamps = 0;  // stamps lowered to a later line's smaller stamp (file order kept)
+  // Stamps of records that printed the same rounded stamp, spread over its rounding interval.
+  int spread_stamps = 0;
+  int repaired_stamps = 0;  // late stamps lowered below a later line's smaller one
   int clamped_stamps = 0;  // records whose stamp was raised to the previous output stamp
   std::string time_policy;  // "relative", "absolute" or "synthesized"
   std::string time_reason;  // which field and why

@@ -78,10 +78,11 @@ class MapBuilder2D {
   PoseGraph2D pose_graph_;
 };
 
-// Poses at every odometry sample: the odometry increment from the nearest node in time
-// composed onto that node's pose (how Kümmerle et al. 2009 evaluate between-node times).
-// Samples before the first or after the last node use the nearest node too. Without odometry
-// the node poses are returned unchanged.
+// Poses at every odometry sample (how Kümmerle et al. 2009 evaluate between-node times): the
+// odometry increment from each of the two neighbouring nodes composed onto that node's pose,
+// the two predictions blended by time fraction, so the pose is continuous and equals each node
+// at its stamp. Samples before the first or after the last node use the nearest node only.
+// Repeated odometry stamps keep the first sample. Without odometry the nodes are returned.
 std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
     const std::vector<MapBuilder2D::TimedPose2d>& nodes,
     const std::vector<sensor::OdometryData>& odometry);
