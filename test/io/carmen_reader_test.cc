@@ -187,9 +187,36 @@ TEST(CarmenReaderTest, AllZeroTimestampsAreSynthesizedFromLineOrder) {
   ASSERT_EQ(records.size(), 4u) << error;
   EXPECT_EQ(summary.time_policy, "synthesized");
   EXPECT_NE(summary.time_reason.find("zero"), std::string::npos) << summary.time_reason;
-  for (size_t i = 0; i < records.size(); ++i) EXPECT_DOUBLE_EQ(StampOf(records[i]), 0.25 * i);
+  // Each scan was taken with the ODOM line before it, so it shares that line's instant:
+  // one period per instant, not per line (else the odometry is extrapolated a step too far).
+  const std::vector<double> expected_s = {0.0, 0.0, 0.25, 0.25};
+  for (size_t i = 0; i < records.size(); ++i) {
+    EXPECT_DOUBLE_EQ(StampOf(records[i]), expected_s[i]) << "record " << i;
+  }
   EXPECT_FLOAT_EQ(records[1].scan.range_max_m, 10.f);
   EXPECT_EQ(summary.range_max_source, "option");
+  std::remove(path.c_str());
+}
+
+TEST(CarmenReaderTest, SaysSoWhenEveryOdomLineIsAGmappingEstimate) {
+  // As in orebro: one ODOM at rest, then after each scan only GMapping's echo of its pose.
+  const std::string path = WriteFile(
+      "noodom.log",
+      "ODOM 0 0 0 0 0 0 0 pippo 0\n"
+      "FLASER 2 1 2 0.5 0 0.1 0.5 0 0.1 0 pippo 0\n"
+      "ODOM 0.5 0 0.1 0 0 0 0 pippo 0\n"
+      "NEFF 10\n"
+      "FLASER 2 1 2 1.5 0 0.2 1.5 0 0.2 0 pippo 0\n"
+      "ODOM 1.5 0 0.2 0 0 0 0 pippo 0\n");
+  CarmenOptions options;
+  options.range_max_m = 10.0;
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, options, &summary, &error);
+  ASSERT_EQ(records.size(), 3u) << error;
+  EXPECT_EQ(summary.odometry, 1);
+  EXPECT_EQ(summary.gmapping_poses_dropped, 2);
+  EXPECT_NE(summary.ToString().find("NO WHEEL ODOMETRY"), std::string::npos) << summary.ToString();
   std::remove(path.c_str());
 }
 
