@@ -16,10 +16,14 @@ echo "== mapping $out/sim.lcm"
 "$bin/offline/fusemap_offline" --log "$out/sim.lcm" --config config/sim.yaml --out "$out" --threads 2 --quiet
 echo "== accuracy against the simulator's ground truth"
 "$bin/eval/fusemap_eval" ate --gt "$out/groundtruth.tum" --est "$out/trajectory.tum" | tail -1
+echo "== coloured 3D map against the simulator's world (surface distance, dynamic removal, landmarks)"
+"$bin/cloudeval/fusemap_cloudeval" --cloud "$out/cloud.ply" --world data/worlds/hall.yaml \
+  --gt "$out/groundtruth.tum" | head -2
 echo "== ground truth from the floor AprilTags, and the SLAM trajectory scored against it"
 "$bin/tagscore/fusemap_tagscore" groundtruth --log "$out/sim.lcm" --tags "$out/tags.yaml" \
   --config config/tagscore.yaml --out "$out/tag_groundtruth.tum"
 "$bin/tagscore/fusemap_tagscore" score --gt "$out/tag_groundtruth.tum" --est "$out/trajectory.tum" \
   --report "$out/report" | tail -3
 echo "== done: $out/map.png (map + trajectory), $out/map.pgm/.yaml, $out/trajectory.tum,"
+echo "   $out/cloud.png (rendered 3D map), $out/cloud.ply/.pcd, $out/octomap.bt/.ot,"
 echo "   $out/report/index.html (tag-based score)"

@@ -21,6 +21,7 @@ bool DaemonOptions::IsValid(std::string* error) const {
   if (max_message_bytes < 1024) return fail("max_message_bytes must be >= 1024");
   if (!(bad_message_log_interval_s >= 0.0)) return fail("bad_message_log_interval_s must be >= 0");
   if (!(checkpoint_period_s >= 0.0)) return fail("checkpoint_period_s must be >= 0");
+  if (!(time_reset_threshold_s >= 0.0)) return fail("time_reset_threshold_s must be >= 0");
   return true;
 }
 
@@ -38,6 +39,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("max_message_bytes", &options.max_message_bytes);
   reader.Get("bad_message_log_interval_s", &options.bad_message_log_interval_s);
   reader.Get("checkpoint_period_s", &options.checkpoint_period_s);
+  reader.Get("time_reset_threshold_s", &options.time_reset_threshold_s);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("daemon", error);
   return options;
@@ -47,22 +49,8 @@ bool LoadDaemonConfig(const std::string& path, io::SlamConfig* slam, DaemonOptio
                       std::string* error) {
   auto reader = common::ConfigReader::FromFile(path, error);
   if (!reader) return false;
-  // The SLAM keys as io::LoadSlamConfig reads them; that function takes a path and rejects the
-  // `daemon` key, so the same key list is repeated here.
   io::SlamConfig result;
-  common::ConfigReader& channels = reader->Child("channels");
-  channels.Get("lidar", &result.channels.lidar);
-  channels.Get("odometry", &result.channels.odometry);
-  channels.Get("imu", &result.channels.imu);
-  channels.Get("rgbd", &result.channels.rgbd);
-  channels.Get("pose", &result.channels.pose);
-  common::ConfigReader& lidar = reader->Child("lidar");
-  lidar.Get("frame", &result.lidar.frame);
-  lidar.Get("range_min_m", &result.lidar.range_min_m);
-  lidar.Get("range_max_m", &result.lidar.range_max_m);
-  std::string lidar_error;
-  if (!result.lidar.IsValid(&lidar_error)) lidar.AddError("range_max_m", lidar_error);
-  result.map_builder = pose_graph::ParseMapBuilderOptions2D(*reader);
+  io::ParseSlamConfig(*reader, &result);
   const DaemonOptions daemon_options = ParseDaemonOptions(reader->Child("daemon"));
   if (!reader->Finish(error)) return false;
   *slam = result;

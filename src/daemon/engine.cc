@@ -1,10 +1,11 @@
 #include "fusemap/daemon/engine.h"
 
 #include <algorithm>
+#include <cassert>
 #include <utility>
 #include <variant>
 
-#include "fusemap/daemon/map_outputs.h"
+#include "fusemap/daemon/resume.h"
 
 namespace fusemap {
 namespace daemon {
@@ -12,6 +13,12 @@ namespace {
 
 // Pose outputs are small and frequent; if the publisher falls behind, old poses are worthless.
 constexpr size_t kOutputQueueSize = 256;
+// Scan poses for the cloud mapper (~25 Hz); the RGB-D thread drains them between frames, so
+// this only fills if it stalls for seconds, and then the SLAM thread waits rather than the
+// cloud losing poses.
+constexpr size_t kCloudPoseQueueSize = 1024;
+// The RGB-D thread wakes at least this often to take poses and publish changed regions.
+constexpr std::chrono::milliseconds kRgbdPoll{50};
 
 std::chrono::steady_clock::duration Period(double rate_hz) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -28,25 +35,42 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
       log_(log),
       start_(std::chrono::steady_clock::now()),
       intake_(slam, options, policy, log),
-      outputs_(kOutputQueueSize, OverflowPolicy::kDropOldest) {
+      outputs_(kOutputQueueSize, OverflowPolicy::kDropOldest),
+      cloud_poses_(kCloudPoseQueueSize, OverflowPolicy::kBlock) {
   if (num_threads > 1) {
     executor_ = std::make_unique<common::ThreadPool>(num_threads);
   } else {
     executor_ = std::make_unique<common::InlineExecutor>();
   }
   builder_ = std::make_unique<pose_graph::MapBuilder2D>(slam_.map_builder, executor_.get());
+  ConnectBuilder();
+  intake_.set_decode_rgbd(slam_.cloud.enabled);
+}
+
+void Engine::ConnectBuilder() {
   builder_->pose_graph().AddSubmapsMovedCallback([this](const std::vector<pose_graph::SubmapMove>&) {
     OutputEvent event;
     event.kind = OutputEvent::Kind::kSubmapsMoved;
+    submaps_moved_ = true;
     outputs_.Push(std::move(event));
   });
+}
+
+void Engine::Restore(const pose_graph::MapBuilderState2D& state) {
+  std::lock_guard<std::mutex> lock(finish_mutex_);
+  assert(!started_);
+  builder_ = pose_graph::MapBuilder2D::Restore(slam_.map_builder, executor_.get(), state);
+  ConnectBuilder();
+  intake_.SeedStamps(LastStateStamp(state));
+  last_stamp_s_ = std::max(0.0, LastStateStamp(state));
+  resumed_ = true;
 }
 
 Engine::~Engine() { Finish(); }
 
 void Engine::SetRgbdConsumer(RgbdConsumer consumer) {
   rgbd_consumer_ = std::move(consumer);
-  intake_.set_decode_rgbd(static_cast<bool>(rgbd_consumer_));
+  intake_.set_decode_rgbd(static_cast<bool>(rgbd_consumer_) || slam_.cloud.enabled);
 }
 
 void Engine::Start() {
@@ -54,6 +78,7 @@ void Engine::Start() {
   if (started_) return;
   started_ = true;
   last_checkpoint_ = std::chrono::steady_clock::now();
+  if (slam_.cloud.enabled) cloud_worker_ = std::make_unique<CloudWorker>(slam_.cloud, cloud_publisher_);
   slam_thread_ = std::thread([this] { RunLocalSlam(); });
   publisher_thread_ = std::thread([this] { RunPublisher(); });
   rgbd_thread_ = std::thread([this] { RunRgbd(); });
@@ -78,6 +103,7 @@ void Engine::Finish() {
 void Engine::Process(SensorMessage& message) {
   if (auto* scan = std::get_if<sensor::LaserScan>(&message.data)) {
     const auto pose = builder_->AddScan(*scan);
+    ForwardToCloud(scan->stamp_s, pose ? &*pose : nullptr);
     ++scans_processed_;
     last_stamp_s_ = scan->stamp_s;
     if (pose) {
@@ -104,7 +130,31 @@ void Engine::RunLocalSlam() {
     MaybeCheckpoint(false);
   }
   builder_->Finish();
+  if (slam_.cloud.enabled) {
+    cloud_seen_submaps_ = -1;  // the final optimisation's poses
+    ForwardToCloud(last_stamp_s_, nullptr);
+  }
+  cloud_poses_.Close();
   MaybeCheckpoint(true);
+}
+
+void Engine::ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result) {
+  if (!slam_.cloud.enabled) return;
+  CloudPoseMessage message;
+  const int submaps = builder_->pose_graph().stats().submaps;
+  if (submaps != cloud_seen_submaps_ || submaps_moved_.exchange(false)) {
+    cloud_seen_submaps_ = submaps;
+    message.T_map_submaps = builder_->pose_graph().Snapshot()->T_map_submaps;
+  }
+  if (result != nullptr && result->submap_id >= 0) {
+    message.stamp_s = stamp_s;
+    message.submap_id = result->submap_id;
+    message.T_local_tracking = result->T_local_tracking;
+    message.T_local_submap = result->T_local_submap;
+  }
+  if (message.submap_id >= 0 || !message.T_map_submaps.empty()) {
+    cloud_poses_.Push(std::move(message));
+  }
 }
 
 void Engine::MaybeCheckpoint(bool force) {
@@ -124,9 +174,33 @@ void Engine::MaybeCheckpoint(bool force) {
 }
 
 void Engine::RunRgbd() {
-  while (auto frame = intake_.rgbd_queue().Pop()) {
-    if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
+  using Clock = std::chrono::steady_clock;
+  if (!cloud_worker_) {
+    while (auto frame = intake_.rgbd_queue().Pop()) {
+      if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
+    }
+    return;
   }
+  // Poses first, then at most one frame: a frame waits in the mapper for the pose after it.
+  const auto take_poses = [this](Clock::time_point deadline) {
+    while (auto message = cloud_poses_.PopUntil(deadline)) {
+      cloud_worker_->AddPoseMessage(*message);
+      deadline = Clock::now() - kRgbdPoll;  // only what is already queued
+    }
+  };
+  while (!intake_.rgbd_queue().closed_and_drained()) {
+    take_poses(Clock::now() - kRgbdPoll);
+    if (auto frame = intake_.rgbd_queue().PopUntil(Clock::now() + kRgbdPoll)) {
+      cloud_worker_->AddFrame(frame->frame);
+      if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
+    }
+    cloud_worker_->MaybePublish(Clock::now());
+  }
+  while (!cloud_poses_.closed_and_drained()) {
+    take_poses(Clock::now() + kRgbdPoll);
+    cloud_worker_->MaybePublish(Clock::now());
+  }
+  cloud_worker_->Finish();
 }
 
 void Engine::PublishSubmapsAndLoops(double stamp_s) {
@@ -187,12 +261,21 @@ HealthReport Engine::Health() const {
   report.constraints = stats.intra_constraints + stats.loop_closures_found;
   report.loop_closures = stats.loop_closures_found;
   report.optimizations = stats.optimizations;
+  report.checkpoint_failures = checkpoint_failures_;
+  report.time_resets = intake_.time_resets();
   return report;
 }
 
-bool Engine::WriteOutputs(const std::string& dir, std::string* error) const {
-  return WriteMapOutputs(*builder_, odometry_, slam_.map_builder.local_slam.submaps.resolution_m,
-                         dir, error);
+bool Engine::WriteOutputs(const std::string& dir, std::string* error,
+                          io::RunOutputsReport* report) const {
+  io::RunOutputs run;
+  run.builder = builder_.get();
+  run.odometry = &odometry_;
+  run.map_resolution_m = slam_.map_builder.local_slam.submaps.resolution_m;
+  run.cloud_mapper = cloud_mapper();
+  io::RunOutputsReport local_report;
+  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error) &&
+         (!resumed_ || WriteResumedTrajectory(*builder_, odometry_, dir, error));
 }
 
 }  // namespace daemon

@@ -57,8 +57,10 @@ std::string FormatHealth(const HealthReport& report) {
                   static_cast<long long>(c.malformed), c.queue_depth);
     line += buffer;
   }
-  std::snprintf(buffer, sizeof(buffer), " latency_p50=%.1fms p99=%.1fms rss=%.0fMB",
-                report.latency.median_ms, report.latency.p99_ms, report.rss_bytes / 1048576.0);
+  std::snprintf(buffer, sizeof(buffer),
+                " latency_p50=%.1fms p99=%.1fms rss=%.0fMB ckpt_fail=%d time_resets=%lld",
+                report.latency.median_ms, report.latency.p99_ms, report.rss_bytes / 1048576.0,
+                report.checkpoint_failures, static_cast<long long>(report.time_resets));
   return line + buffer;
 }
 

@@ -39,20 +39,37 @@ bool Intake::Reject(InputChannel channel, const std::string& kind, const std::st
   return false;
 }
 
-bool Intake::CheckStamp(InputChannel channel, double stamp_s) {
-  char buffer[160];
+bool Intake::CheckStamp(InputChannel channel, double* stamp_s) {
+  char buffer[200];
   const double now_s = wall_clock_s_();
-  if (stamp_s > now_s + options_.max_future_s) {
+  if (*stamp_s > now_s + options_.max_future_s) {
     std::snprintf(buffer, sizeof(buffer), "stamp %.6f is %.1f s ahead of the clock; dropped",
-                  stamp_s, stamp_s - now_s);
+                  *stamp_s, *stamp_s - now_s);
     return Reject(channel, "timestamp from the future", buffer);
   }
-  if (stamp_s < last_stamp_s_[channel]) {
+  double rebased_s = *stamp_s + time_offset_s_;
+  const double last_s = last_stamp_s_[channel];
+  if (channel == kLidarChannel && options_.time_reset_threshold_s > 0.0 &&
+      rebased_s < last_s - options_.time_reset_threshold_s) {
+    const double jump_s = last_s - rebased_s;
+    time_offset_s_ += jump_s + kTimeResetGapS;
+    rebased_s = *stamp_s + time_offset_s_;
+    ++time_resets_;
+    if (log_ != nullptr) {
+      std::snprintf(buffer, sizeof(buffer),
+                    "scan stamp %.6f is %.1f s before the previous one: new time base, incoming "
+                    "stamps now shifted by %+.6f s",
+                    *stamp_s, jump_s, time_offset_s_);
+      log_->Report(names_[channel] + ": time reset", buffer);
+    }
+  }
+  if (rebased_s < last_s) {
     std::snprintf(buffer, sizeof(buffer), "stamp %.6f is before the previous %.6f; dropped",
-                  stamp_s, last_stamp_s_[channel]);
+                  rebased_s, last_s);
     return Reject(channel, "timestamp going backwards", buffer);
   }
-  last_stamp_s_[channel] = stamp_s;
+  last_stamp_s_[channel] = rebased_s;
+  *stamp_s = rebased_s;
   return true;
 }
 
@@ -91,7 +108,7 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
                       std::to_string(stats.nonfinite_ranges) + " of " +
                           std::to_string(scan.ranges_m.size()) + " ranges are NaN/inf; dropped");
       }
-      if (!CheckStamp(input, scan.stamp_s)) return false;
+      if (!CheckStamp(input, &scan.stamp_s)) return false;
       message.data = std::move(scan);
       return Enqueue(input, std::move(message));
     }
@@ -100,14 +117,14 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
       if (!io::DecodeOdometry(data, size, &odometry, &error)) {
         return Reject(input, "undecodable odometry", error);
       }
-      if (!CheckStamp(input, odometry.stamp_s)) return false;
+      if (!CheckStamp(input, &odometry.stamp_s)) return false;
       message.data = odometry;
       return Enqueue(input, std::move(message));
     }
     case kImuChannel: {
       sensor::ImuData imu;
       if (!io::DecodeImu(data, size, &imu, &error)) return Reject(input, "undecodable IMU", error);
-      if (!CheckStamp(input, imu.stamp_s)) return false;
+      if (!CheckStamp(input, &imu.stamp_s)) return false;
       message.data = imu;
       return Enqueue(input, std::move(message));
     }
@@ -118,7 +135,7 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
       if (!io::DecodeRgbdFrame(data, size, &rgbd.frame, &error)) {
         return Reject(input, "undecodable RGB-D frame", error);
       }
-      if (!CheckStamp(input, rgbd.frame.stamp_s)) return false;
+      if (!CheckStamp(input, &rgbd.frame.stamp_s)) return false;
       return rgbd_queue_.Push(std::move(rgbd));
     }
     case kNumInputChannels:

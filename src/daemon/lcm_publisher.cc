@@ -85,8 +85,12 @@ void LcmPublisher::PublishHealth(double stamp_s, const HealthReport& report) {
   msg.constraints = report.constraints;
   msg.loop_closures = report.loop_closures;
   msg.optimizations = report.optimizations;
+  msg.checkpoint_failures = report.checkpoint_failures;
+  msg.time_resets = report.time_resets;
   Send(channels_.health, msg);
-  if (health_to_stderr_) std::fprintf(stderr, "fusemapd: %s\n", FormatHealth(report).c_str());
+  if (health_to_stderr_) {
+    std::fprintf(stderr, "fusemapd: t=%.1f %s\n", stamp_s, FormatHealth(report).c_str());
+  }
 }
 
 }  // namespace daemon

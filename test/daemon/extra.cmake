@@ -11,3 +11,10 @@ if(TARGET fusemapd AND TARGET fusemap_sim_tool)
                    $<TARGET_FILE:daemon_log_check> ${PROJECT_SOURCE_DIR})
   set_tests_properties(daemon_netns_integration PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
 endif()
+# kill -9 mid-run, --resume, whole-run outputs; truncated checkpoint falls back to .prev.
+if(TARGET fusemapd AND TARGET fusemap_sim_tool)
+  add_test(NAME daemon_kill_resume
+           COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/daemon/kill_resume.sh
+                   $<TARGET_FILE:fusemapd> $<TARGET_FILE:fusemap_sim_tool> ${PROJECT_SOURCE_DIR})
+  set_tests_properties(daemon_kill_resume PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
+endif()

@@ -118,6 +118,55 @@ TEST_F(IntakeTest, RgbdIgnoredWithoutConsumerAndCloseRefuses) {
   EXPECT_TRUE(intake->sensor_queue().closed_and_drained());
 }
 
+// A looping log player: after t0+10 s the stamps start again at t0. The jump (> 5 s) on the laser
+// is a time reset: everything after it is shifted onto one monotonic clock, 1 s after the last
+// scan; odometry of the new loop that arrives before the reset scan is still "backwards".
+TEST_F(IntakeTest, LaserJumpBackIsATimeResetAndLaterStampsAreRebased) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  const double t0 = kNowS - 100.0;
+  EXPECT_TRUE(Send(*intake, "ODOMETRY", io::EncodeOdometry({t0 + 9.9, common::Rigid2d()})));
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 10.0))));
+  EXPECT_FALSE(Send(*intake, "ODOMETRY", io::EncodeOdometry({t0, common::Rigid2d()})));
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 6.0))));  // 4 s: backwards
+  EXPECT_EQ(intake->time_resets(), 0);
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 0.1))));  // 9.9 s: reset
+  EXPECT_EQ(intake->time_resets(), 1);
+  EXPECT_TRUE(Send(*intake, "ODOMETRY", io::EncodeOdometry({t0 + 0.15, common::Rigid2d()})));
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 0.2))));
+  // A second loop: a second reset, on top of the first offset.
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 10.0))));
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 0.1))));
+  EXPECT_EQ(intake->time_resets(), 2);
+
+  std::vector<double> stamps;
+  while (intake->sensor_queue().size() > 0) {
+    auto m = intake->sensor_queue().Pop();
+    stamps.push_back(m->channel == kLidarChannel
+                         ? std::get<sensor::LaserScan>(m->data).stamp_s
+                         : std::get<sensor::OdometryData>(m->data).stamp_s);
+  }
+  const double gap = Intake::kTimeResetGapS;
+  const std::vector<double> expected = {t0 + 9.9,         t0 + 10.0,        t0 + 10.0 + gap,
+                                        t0 + 10.05 + gap, t0 + 10.1 + gap,  t0 + 19.9 + gap,
+                                        t0 + 19.9 + 2 * gap};
+  ASSERT_EQ(stamps.size(), expected.size());
+  for (size_t i = 0; i < stamps.size(); ++i) EXPECT_NEAR(stamps[i], expected[i], 1e-6) << i;
+  EXPECT_EQ(intake->counters(kLidarChannel).malformed, 1);
+  EXPECT_EQ(intake->counters(kOdometryChannel).malformed, 1);
+}
+
+TEST_F(IntakeTest, SeededStampsRejectOlderInputAndTimeResetCanBeDisabled) {
+  DaemonOptions options;
+  options.time_reset_threshold_s = 0.0;
+  Intake intake(io::SlamConfig(), options, OverflowPolicy::kDropOldest, &log_,
+                [] { return kNowS; });
+  intake.SeedStamps(kNowS - 10.0);
+  EXPECT_FALSE(Send(intake, "ODOMETRY", io::EncodeOdometry({kNowS - 11.0, common::Rigid2d()})));
+  EXPECT_FALSE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 60.0))));
+  EXPECT_TRUE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 9.0))));
+  EXPECT_EQ(intake.time_resets(), 0);
+}
+
 }  // namespace
 }  // namespace daemon
 }  // namespace fusemap

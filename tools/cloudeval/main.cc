@@ -4,8 +4,13 @@
 #include <filesystem>
 #include <string>
 
+#include <pcl/common/transforms.h>
+
 #include "cloud_eval.h"
+#include "fusemap/eval/absolute_trajectory_error.h"
 #include "fusemap/io/cloud_writer.h"
+#include "fusemap/io/tum_trajectory.h"
+#include "landmark_eval.h"
 #include "fusemap/sim/world_loader.h"
 
 namespace {
@@ -19,12 +24,21 @@ constexpr char kUsage[] =
     "  median_surface_dist_m  median distance of the map's static points to static surfaces\n"
     "  dynamic_removed_frac   removed dynamic / all dynamic points (map + removed)\n"
     "  static_kept_frac       static points in the map / all static points (map + removed)\n"
+    "Then `landmark_pair_max_rel_err=… landmark_pairs_found=N/6` and one `landmark_pair …` line\n"
+    "per pair: horizontal distances between six landmark pairs (pillar axes by circle fit, top\n"
+    "centres of boxes below the camera) against the world's (tools/cloudeval/landmark_eval.h).\n"
+    "The map frame is the SLAM frame (the robot's start); with --gt the cloud is first aligned\n"
+    "to the world by the rigid fit of the SLAM trajectory to the ground truth (as ATE does).\n"
     "Options:\n"
     "  --cloud FILE              map cloud, .ply or .pcd (required)\n"
     "  --world FILE              world description the log was simulated from (required)\n"
     "  --removed FILE            points removed as dynamic (default: cloud_removed.ply next to\n"
     "                            --cloud; if that is absent the fractions print as nan)\n"
     "  --static-tolerance-m M    (default 0.1)\n"
+    "  --gt FILE                 ground-truth base trajectory in the world (TUM; fusemap_sim's\n"
+    "                            groundtruth.tum); without it the cloud must be in the world frame\n"
+    "  --est FILE                the map's trajectory (default: trajectory.tum next to --cloud)\n"
+    "  --camera-height-m H       box tops below H - 0.05 m are landmarks (default 1.0)\n"
     "  --help                    this text\n";
 
 bool ReadCloud(const std::string& path, fusemap::cloud::ColorCloud* cloud, std::string* error) {
@@ -36,8 +50,8 @@ bool ReadCloud(const std::string& path, fusemap::cloud::ColorCloud* cloud, std::
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string cloud_path, world_path, removed_path;
-  double static_tolerance_m = 0.1;
+  std::string cloud_path, world_path, removed_path, gt_path, est_path;
+  double static_tolerance_m = 0.1, camera_height_m = 1.0;
   for (int i = 1; i < argc; ++i) {
     const std::string flag = argv[i];
     if (flag == "--help" || flag == "-h") {
@@ -56,6 +70,18 @@ int main(int argc, char** argv) {
       world_path = value;
     } else if (flag == "--removed") {
       removed_path = value;
+    } else if (flag == "--gt") {
+      gt_path = value;
+    } else if (flag == "--est") {
+      est_path = value;
+    } else if (flag == "--camera-height-m") {
+      char* end = nullptr;
+      camera_height_m = std::strtod(value, &end);
+      if (end == value || *end != '\0' || !(camera_height_m > 0.0)) {
+        std::fprintf(stderr, "fusemap_cloudeval: --camera-height-m expects a number > 0, got '%s'\n",
+                     value);
+        return 2;
+      }
     } else if (flag == "--static-tolerance-m") {
       char* end = nullptr;
       static_tolerance_m = std::strtod(value, &end);
@@ -102,6 +128,30 @@ int main(int argc, char** argv) {
     return 1;
   }
 
+  if (!gt_path.empty()) {
+    if (est_path.empty()) {
+      est_path = (std::filesystem::path(cloud_path).parent_path() / "trajectory.tum").string();
+    }
+    fusemap::eval::Trajectory gt, est;
+    if (!fusemap::io::ReadTumTrajectoryFile(gt_path, &gt, &error) ||
+        !fusemap::io::ReadTumTrajectoryFile(est_path, &est, &error)) {
+      std::fprintf(stderr, "fusemap_cloudeval: %s\n", error.c_str());
+      return 1;
+    }
+    const fusemap::eval::AteResult ate =
+        fusemap::eval::ComputeAte(gt, est, fusemap::eval::AteOptions());
+    if (ate.trans_m.count == 0) {
+      std::fprintf(stderr, "fusemap_cloudeval: no common stamps in %s and %s\n", gt_path.c_str(),
+                   est_path.c_str());
+      return 1;
+    }
+    const Eigen::Affine3f T_world_map =
+        (Eigen::Translation3d(ate.T_gt_est.translation()) * ate.T_gt_est.rotation()).cast<float>();
+    pcl::transformPointCloud(kept, kept, T_world_map);
+    pcl::transformPointCloud(removed, removed, T_world_map);
+    std::fprintf(stderr, "fusemap_cloudeval: aligned to the world with ATE rmse %.4f m\n",
+                 ate.trans_m.rmse);
+  }
   const fusemap::cloudeval_tool::CloudEvalResult result = fusemap::cloudeval_tool::EvaluateCloud(
       world, kept, have_removed ? &removed : nullptr, static_tolerance_m);
   std::fprintf(stderr,
@@ -112,5 +162,10 @@ int main(int argc, char** argv) {
                static_cast<long long>(result.removed_static),
                static_cast<long long>(result.removed_dynamic));
   std::printf("%s\n", fusemap::cloudeval_tool::FormatCloudEvalLine(result).c_str());
+  const auto pairs = fusemap::cloudeval_tool::EvaluateLandmarkPairs(world, kept, camera_height_m);
+  std::printf("%s\n", fusemap::cloudeval_tool::FormatLandmarkSummary(pairs).c_str());
+  for (const auto& pair : pairs) {
+    std::printf("%s\n", fusemap::cloudeval_tool::FormatLandmarkPair(pair).c_str());
+  }
   return 0;
 }

@@ -8,13 +8,18 @@
 #include <cstdlib>
 #include <cstring>
 #include <ctime>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
+#include "fusemap/daemon/cloud_region_publisher.h"
 #include "fusemap/daemon/daemon_options.h"
 #include "fusemap/daemon/engine.h"
+#include "fusemap/daemon/file_checkpointer.h"
 #include "fusemap/daemon/lcm_input.h"
 #include "fusemap/daemon/lcm_publisher.h"
+#include "fusemap/daemon/resume.h"
 
 namespace fusemap {
 namespace {
@@ -32,14 +37,23 @@ constexpr char kUsage[] =
     "each optimisation), loop-closure events and health at 1 Hz (daemon: key of the profile,\n"
     "see config/daemon.yaml). On SIGINT/SIGTERM, or at the end of a file:// log, it processes\n"
     "everything queued, runs the final optimisation and writes DIR/trajectory.tum, DIR/nodes.tum,\n"
-    "DIR/map.pgm, DIR/map.yaml and DIR/map.png (as fusemap_offline).\n"
+    "DIR/map.pgm, DIR/map.yaml and DIR/map.png (as fusemap_offline; with RGB-D frames and\n"
+    "cloud.enabled also DIR/cloud.ply/.pcd, DIR/cloud_removed.ply, DIR/octomap.bt/.ot and\n"
+    "DIR/cloud.png, while changed cloud regions go out on FUSEMAP_CLOUD_REGION as\n"
+    "fusemap_lcm.cloud_region_t, at most every 0.5 s). Its state goes to\n"
+    "DIR/checkpoint.fmck every daemon.checkpoint_period_s and at shutdown (the one before is\n"
+    "kept as DIR/checkpoint.fmck.prev). After --resume, trajectory.tum has a pose per node up\n"
+    "to the resume point and a pose per odometry sample after it.\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
     "                  replay a log as fast as possible (same result as fusemap_offline with\n"
     "                  --threads 1; replay never drops: the reader waits for SLAM)\n"
     "  --out DIR       output folder (created)\n"
-    "  --resume        continue from the checkpoint in DIR\n"
+    "  --resume        continue from DIR/checkpoint.fmck (or, if that is missing or corrupt,\n"
+    "                  DIR/checkpoint.fmck.prev; the reason is printed). A checkpoint of another\n"
+    "                  fusemap version is refused (exit 3); one mapped with a different config\n"
+    "                  text is used with the current config and a warning\n"
     "  --threads N     workers for loop closure and optimisation (default 1: deterministic)\n"
     "  --quiet         no health lines on stderr\n"
     "  --help          this text\n"
@@ -47,6 +61,15 @@ constexpr char kUsage[] =
     "exit codes: 0 clean shutdown (signal or end of log, outputs written), 1 runtime failure\n"
     "(LCM error, outputs not writable, no scans), 2 usage or configuration error, 3 checkpoint\n"
     "cannot be restored (--resume).\n";
+
+bool ReadFileText(const std::string& path, std::string* text) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return false;
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  *text = buffer.str();
+  return static_cast<bool>(in);
+}
 
 struct Args {
   std::string config, lcm_url, out;
@@ -105,10 +128,23 @@ int Run(const Args& args) {
     std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
     return kExitUsage;
   }
+  std::string config_text;
+  if (!ReadFileText(args.config, &config_text)) {
+    std::fprintf(stderr, "fusemapd: cannot read %s\n", args.config.c_str());
+    return kExitUsage;
+  }
+  const std::string checkpoint_path = daemon::CheckpointPath(args.out);
+  daemon::ResumeCheckpoint resume;
   if (args.resume) {
-    // Checkpoint restore plugs in here (Engine::builder() before Start()).
-    std::fprintf(stderr, "fusemapd: --resume: checkpoints are not available in this build\n");
-    return kExitCheckpoint;
+    const auto status =
+        daemon::LoadResumeCheckpoint(checkpoint_path, config_text, &resume, &error);
+    if (status != daemon::ResumeStatus::kOk) {
+      std::fprintf(stderr, "fusemapd: --resume: %s\n", error.c_str());
+      return kExitCheckpoint;
+    }
+    for (const auto& warning : resume.warnings) {
+      std::fprintf(stderr, "fusemapd: --resume: %s\n", warning.c_str());
+    }
   }
   // Signals are taken synchronously by this thread (sigtimedwait below); every thread created
   // from here on inherits the blocked mask, so no handler runs inside LCM or SLAM code.
@@ -130,9 +166,22 @@ int Run(const Args& args) {
       {slam.channels.pose, options.submap_list_channel, options.loop_closure_channel,
        options.health_channel},
       !args.quiet);
+  // Changed regions of the coloured map (cloud.enabled), for a viewer to follow.
+  daemon::LcmCloudRegionPublisher cloud_publisher(input.publish_handle(), "FUSEMAP_CLOUD_REGION");
   auto engine = std::make_unique<daemon::Engine>(slam, options, args.threads, policy, &publisher,
                                                  &log);
-  // Checkpointer and RGB-D consumer hooks: engine->SetCheckpointer(), SetRgbdConsumer().
+  engine->SetCloudRegionPublisher(&cloud_publisher);
+  daemon::FileCheckpointer checkpointer(checkpoint_path, config_text, [&args](const std::string& line) {
+    if (!args.quiet) std::fprintf(stderr, "fusemapd: %s\n", line.c_str());
+  });
+  engine->SetCheckpointer(&checkpointer);
+  if (args.resume) {
+    engine->Restore(resume.contents.state);
+    std::fprintf(stderr, "fusemapd: resumed from %s (%zu nodes, %zu submaps)\n",
+                 resume.used_path.c_str(), resume.contents.state.pose_graph.nodes.size(),
+                 resume.contents.state.submaps.size());
+    resume = daemon::ResumeCheckpoint();  // the engine has its own copy now
+  }
   input.Subscribe(&engine->intake());
   engine->Start();
 
@@ -163,19 +212,28 @@ int Run(const Args& args) {
                                                            : "LCM error");
   }
   engine->Finish();
-  if (engine->scans_processed() == 0) {
+  if (engine->scans_processed() == 0 && !args.resume) {  // a resumed map is still worth writing
     std::fprintf(stderr, "fusemapd: no usable scans on channel %s; no outputs written\n",
                  slam.channels.lidar.c_str());
     return kExitRuntime;
   }
-  if (!engine->WriteOutputs(args.out, &error)) {
+  io::RunOutputsReport written;
+  if (!engine->WriteOutputs(args.out, &error, &written)) {
     std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
     return kExitRuntime;
   }
   const auto health = engine->Health();
   std::printf("%s\n", daemon::FormatHealth(health).c_str());
+  const auto saved = checkpointer.stats();
+  std::printf("checkpoints: %d written, %d failed; last %s: %d nodes, %.2f MB in %.3f s\n",
+              saved.saved, saved.failed, checkpoint_path.c_str(), saved.last_nodes,
+              saved.last_bytes / 1048576.0, saved.last_seconds);
   std::printf("wrote %s/trajectory.tum %s/map.pgm %s/map.yaml %s/map.png\n", args.out.c_str(),
               args.out.c_str(), args.out.c_str(), args.out.c_str());
+  if (written.wrote_cloud) {
+    std::printf("%s cloud_regions_published=%lld\n", written.cloud_summary.c_str(),
+                static_cast<long long>(cloud_publisher.published()));
+  }
   if (end == daemon::LcmInput::End::kError && signal_number == 0) return kExitRuntime;
   return kExitOk;
 }

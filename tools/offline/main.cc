@@ -1,5 +1,5 @@
 // fusemap_offline: runs 2D SLAM over a recorded LCM log as fast as the CPU allows and writes
-// the trajectory, node poses and occupancy map.
+// the trajectory, node poses, occupancy map and, with RGB-D frames, the coloured cloud.
 #include <sys/resource.h>
 
 #include <algorithm>
@@ -11,16 +11,16 @@
 #include <string>
 #include <vector>
 
+#include "cloud_feed.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/trajectory.h"
-#include "fusemap/io/relations_file.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
-#include "fusemap/io/map_writer.h"
+#include "fusemap/io/relations_file.h"
+#include "fusemap/io/rgbd_conversions.h"
+#include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
-#include "fusemap/io/tum_trajectory.h"
-#include "fusemap/mapping/grid_image.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 
 namespace fusemap {
@@ -30,12 +30,17 @@ constexpr char kUsage[] =
     "usage: fusemap_offline --log LOG.lcm --config CONFIG.yaml --out DIR [options]\n"
     "\n"
     "Runs laser SLAM over an LCM log as fast as the CPU allows and writes DIR/trajectory.tum\n"
-    "(a pose per odometry sample: odometry composed onto the nearest node), DIR/nodes.tum,\n"
+    "(a pose per odometry sample: the odometry between the two neighbouring nodes,\n"
+    "blended by time), DIR/nodes.tum,\n"
     "DIR/odometry.tum (the odometry input as received),\n"
     "DIR/map.pgm + DIR/map.yaml (map_server) and DIR/map.png (map with trajectory).\n"
+    "With RGB-D frames on the config's rgbd channel (and cloud.enabled) also the coloured map:\n"
+    "DIR/cloud.ply, DIR/cloud.pcd, DIR/cloud_removed.ply (points removed as dynamic),\n"
+    "DIR/octomap.bt, DIR/octomap.ot and DIR/cloud.png (an oblique rendering).\n"
     "\n"
     "options:\n"
     "  --no-loop-closure   local SLAM only (no loop-closure search, no optimisation)\n"
+    "  --no-cloud          ignore RGB-D frames (as cloud.enabled: false)\n"
     "  --threads N         worker threads for loop-closure search and optimisation (default 1:\n"
     "                      reproducible; more is faster but no longer bit-for-bit repeatable)\n"
     "  --quiet             no progress line\n"
@@ -49,6 +54,7 @@ constexpr char kUsage[] =
 struct Args {
   std::string log, config, out;
   bool loop_closure = true;
+  bool cloud = true;
   int threads = 1;
   bool quiet = false;
   std::string relations;
@@ -75,6 +81,8 @@ bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
       if (!value(&args->out)) return false;
     } else if (a == "--no-loop-closure") {
       args->loop_closure = false;
+    } else if (a == "--no-cloud") {
+      args->cloud = false;
     } else if (a == "--relations") {
       if (!value(&args->relations)) return false;
     } else if (a == "--relations-time-offset") {
@@ -107,15 +115,6 @@ bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
   return true;
 }
 
-eval::Trajectory ToTrajectory(const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& poses) {
-  eval::Trajectory trajectory;
-  for (const auto& p : poses) {
-    if (!trajectory.empty() && p.stamp_s <= trajectory.back().stamp_s) continue;
-    trajectory.push_back({p.stamp_s, common::Rigid3d::FromRigid2d(p.pose)});
-  }
-  return trajectory;
-}
-
 double Percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
   std::sort(values.begin(), values.end());
@@ -131,6 +130,7 @@ int Run(const Args& args) {
     return 2;
   }
   if (!args.loop_closure) config.map_builder.global_slam.optimize_every_n_nodes = 0;
+  if (!args.cloud) config.cloud.enabled = false;
   io::LcmLogReader reader;
   if (!reader.Open(args.log, &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
@@ -151,10 +151,12 @@ int Run(const Args& args) {
     executor = std::make_unique<common::InlineExecutor>();
   }
   pose_graph::MapBuilder2D builder(config.map_builder, executor.get());
+  std::unique_ptr<offline_tool::CloudFeed> cloud_feed;
+  if (config.cloud.enabled) cloud_feed = std::make_unique<offline_tool::CloudFeed>(config.cloud);
 
   std::vector<sensor::OdometryData> odometry;
   std::vector<double> scan_cost_ms;
-  int scans = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
+  int scans = 0, rgbd_frames = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
   double first_stamp_s = 0.0, last_stamp_s = 0.0;
   bool have_stamp = false;
   const auto start = std::chrono::steady_clock::now();
@@ -178,10 +180,11 @@ int Run(const Args& args) {
       }
       stamp_s = scan.stamp_s;
       const auto t0 = std::chrono::steady_clock::now();
-      builder.AddScan(scan);
+      const auto result = builder.AddScan(scan);
       scan_cost_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       ++scans;
+      if (cloud_feed && result) cloud_feed->AddScan(builder, scan.stamp_s, *result);
     } else if (event.channel == config.channels.odometry) {
       sensor::OdometryData data;
       if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) {
@@ -203,6 +206,15 @@ int Run(const Args& args) {
       }
       stamp_s = data.stamp_s;
       builder.AddImu(data);
+    } else if (cloud_feed && event.channel == config.channels.rgbd) {
+      sensor::RgbdFrame frame;
+      if (!io::DecodeRgbdFrame(event.data.data(), size, &frame, &error)) {
+        drop_bad_message();
+        continue;
+      }
+      stamp_s = frame.stamp_s;
+      cloud_feed->AddFrame(frame);
+      ++rgbd_frames;
     } else {
       ++other_messages;
       continue;
@@ -219,6 +231,7 @@ int Run(const Args& args) {
     }
   }
   builder.Finish();
+  if (cloud_feed) cloud_feed->Finish(builder);
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) std::fprintf(stderr, "\n");
   if (scans == 0) {
@@ -227,40 +240,17 @@ int Run(const Args& args) {
     return 1;
   }
 
-  const auto nodes = builder.NodePoses();
-  const auto dense = pose_graph::DensifyWithOdometry(nodes, odometry);
-  std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
-  for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+  io::RunOutputs run;
+  run.builder = &builder;
+  run.odometry = &odometry;
+  run.map_resolution_m = config.map_builder.local_slam.submaps.resolution_m;
+  run.cloud_mapper = cloud_feed ? &cloud_feed->mapper() : nullptr;
+  io::RunOutputsReport written;
+  if (!io::WriteRunOutputs(run, args.out, &written, &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 1;
+  }
   const std::string out = args.out + "/";
-  if (!io::WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), &error) ||
-      !io::WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), &error) ||
-      !io::WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), &error)) {
-    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
-    return 1;
-  }
-  const auto snapshot = builder.pose_graph().Snapshot();
-  const auto submaps = builder.pose_graph().submaps();
-  std::vector<mapping::PlacedGrid> grids;
-  for (size_t i = 0; i < submaps.size() && i < snapshot->T_map_submaps.size(); ++i) {
-    grids.emplace_back(snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
-                       &submaps[i]->grid());
-  }
-  const double resolution_m = config.map_builder.local_slam.submaps.resolution_m;
-  const mapping::GridImage image = mapping::RenderMap(grids, resolution_m);
-  io::MapImage map;
-  map.width = image.width;
-  map.height = image.height;
-  map.resolution_m = image.resolution_m;
-  map.origin_m = image.origin_m;
-  map.pixels = image.pixels;
-  std::vector<Eigen::Vector2d> xy;
-  for (const auto& p : dense) xy.push_back(p.pose.translation());
-  if (!io::WriteMapPgmYaml(map, out + "map", &error) ||
-      !io::WriteMapPng(map, xy, out + "map.png", &error)) {
-    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
-    return 1;
-  }
-
   const auto local = builder.local_slam().stats();
   const auto global = builder.pose_graph().stats();
   struct rusage usage;
@@ -280,13 +270,39 @@ int Run(const Args& args) {
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
   std::printf("wrote %strajectory.tum %snodes.tum %smap.pgm %smap.yaml %smap.png\n", out.c_str(),
               out.c_str(), out.c_str(), out.c_str(), out.c_str());
+  if (written.wrote_cloud) {
+    std::string files;
+    for (const std::string& f : written.files) {
+      if (f.find("/cloud") != std::string::npos || f.find("/octomap") != std::string::npos) {
+        files += " " + f;
+      }
+    }
+    std::printf("wrote%s\n", files.c_str());
+    std::printf("%s\n", written.cloud_summary.c_str());
+  }
+  if (cloud_feed) {
+    const auto& c = cloud_feed->mapper().binder().stats();
+    std::printf("cloud_cost: rgbd_frames=%d per_frame_ms_median=%.1f per_frame_ms_p99=%.1f "
+                "cloud_s=%.2f submap_updates=%zu update_ms_max=%.2f final_update_ms=%.2f "
+                "final_update_regions=%zu final_update_points=%zu rebuilt_points_total=%lld\n",
+                rgbd_frames, Percentile(cloud_feed->frame_ms(), 0.5),
+                Percentile(cloud_feed->frame_ms(), 0.99), cloud_feed->total_s(),
+                cloud_feed->update_ms().size(),
+                cloud_feed->update_ms().empty()
+                    ? 0.0
+                    : *std::max_element(cloud_feed->update_ms().begin(),
+                                        cloud_feed->update_ms().end()),
+                cloud_feed->final_update_ms(), cloud_feed->final_update_regions(),
+                cloud_feed->final_update_points(), static_cast<long long>(c.rebuilt_points_total));
+  }
   if (!args.relations.empty()) {
     std::vector<eval::Relation> relations;
     if (!io::ReadRelationsFile(args.relations, args.relations_time_offset_s, &relations, &error)) {
       std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
       return 1;
     }
-    const eval::RelationError r = eval::EvaluateRelations(ToTrajectory(dense), relations);
+    const eval::RelationError r = eval::EvaluateRelations(
+        io::ToTrajectory(pose_graph::DensifyWithOdometry(builder.NodePoses(), odometry)), relations);
     std::printf("relations: used=%d skipped=%d trans_mean_m=%.4f trans_std_m=%.4f "
                 "rot_mean_deg=%.3f rot_std_deg=%.3f\n",
                 r.count_used, r.count_skipped, r.trans_m.mean, r.trans_m.std, r.rot_deg.mean,

@@ -30,6 +30,9 @@ struct DaemonOptions {
   double bad_message_log_interval_s = 10.0;
   // Seconds between checkpoints; 0 = only at shutdown.
   double checkpoint_period_s = 60.0;
+  // A laser stamp this much before the previous one is a time reset (looping log player,
+  // clock set back): a new time base instead of a drop (see Intake). 0 = never.
+  double time_reset_threshold_s = 5.0;
 
   bool IsValid(std::string* error) const;
 };

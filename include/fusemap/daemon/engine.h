@@ -12,11 +12,13 @@
 
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/daemon/bounded_queue.h"
+#include "fusemap/daemon/cloud_worker.h"
 #include "fusemap/daemon/daemon_options.h"
 #include "fusemap/daemon/health.h"
 #include "fusemap/daemon/intake.h"
 #include "fusemap/daemon/publisher.h"
 #include "fusemap/daemon/rate_limited_log.h"
+#include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 
@@ -43,8 +45,14 @@ class Engine {
   // Before Start(): hooks. Without an RGB-D consumer, frames are not decoded.
   void SetCheckpointer(Checkpointer* checkpointer) { checkpointer_ = checkpointer; }
   void SetRgbdConsumer(RgbdConsumer consumer);
+  // Before Start(): where changed cloud regions go (with cloud.enabled; may stay unset).
+  void SetCloudRegionPublisher(CloudRegionPublisher* publisher) { cloud_publisher_ = publisher; }
   // Before Start(): for restoring a checkpoint into.
   pose_graph::MapBuilder2D& builder() { return *builder_; }
+  // Before Start(): continue from a checkpointed state (--resume). Replaces the builder,
+  // refuses input older than the state's last node, and makes WriteOutputs write a whole-run
+  // trajectory (daemon/resume.h).
+  void Restore(const pose_graph::MapBuilderState2D& state);
 
   void Start();
   Intake& intake() { return intake_; }
@@ -55,8 +63,14 @@ class Engine {
   // After Finish(): the builder and the odometry the SLAM thread accepted.
   const pose_graph::MapBuilder2D& finished_builder() const { return *builder_; }
   const std::vector<sensor::OdometryData>& odometry() const { return odometry_; }
+  // After Finish(): the RGB-D thread's cloud mapper; null without cloud.enabled.
+  const cloud::CloudMapper* cloud_mapper() const {
+    return cloud_worker_ ? &cloud_worker_->mapper() : nullptr;
+  }
   // After Finish(): fusemap_offline's output files into `dir`.
-  bool WriteOutputs(const std::string& dir, std::string* error) const;
+  // With RGB-D frames bound also the cloud files; `report` (optional) lists what was written.
+  bool WriteOutputs(const std::string& dir, std::string* error,
+                    io::RunOutputsReport* report = nullptr) const;
 
   HealthReport Health() const;
   int scans_processed() const { return scans_processed_; }
@@ -76,6 +90,8 @@ class Engine {
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
   void PublishSubmapsAndLoops(double stamp_s);
+  void ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result);
+  void ConnectBuilder();
 
   const io::SlamConfig slam_;
   const DaemonOptions options_;
@@ -83,21 +99,30 @@ class Engine {
   RateLimitedLog* const log_;
   Checkpointer* checkpointer_ = nullptr;
   RgbdConsumer rgbd_consumer_;
+  CloudRegionPublisher* cloud_publisher_ = nullptr;
   const std::chrono::steady_clock::time_point start_;
 
   // Declared before the builder so that they outlive it (its callbacks push into outputs_).
   Intake intake_;
   BoundedQueue<OutputEvent> outputs_;
   LatencyWindow latency_;
+  // SLAM thread → RGB-D thread: scan poses and submap poses for the cloud mapper.
+  BoundedQueue<CloudPoseMessage> cloud_poses_;
+  std::atomic<bool> submaps_moved_{false};  // set by the optimiser, cleared by the SLAM thread
   std::unique_ptr<common::Executor> executor_;
   std::unique_ptr<pose_graph::MapBuilder2D> builder_;
 
+  // RGB-D thread only (read by others only after Finish joined it); null without a cloud.
+  std::unique_ptr<CloudWorker> cloud_worker_;
+
   // SLAM thread only (read by others only after Finish joined it).
+  int cloud_seen_submaps_ = -1;
   std::vector<sensor::OdometryData> odometry_;
   std::chrono::steady_clock::time_point last_checkpoint_;
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};
   std::atomic<double> last_stamp_s_{0.0};
+  bool resumed_ = false;  // set before Start()
   // Publisher thread only.
   int published_loop_closures_ = 0;
 

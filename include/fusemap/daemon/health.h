@@ -62,6 +62,9 @@ struct HealthReport {
   int constraints = 0;
   int loop_closures = 0;
   int optimizations = 0;
+  // Checkpoints that could not be written, and time resets of the input (see Intake).
+  int checkpoint_failures = 0;
+  int64_t time_resets = 0;
 };
 
 // One line for logs: "nodes=.. submaps=.. LIDAR=rx/drop/bad ... p50=..ms p99=..ms rss=..MB".

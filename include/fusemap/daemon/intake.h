@@ -2,6 +2,7 @@
 #define FUSEMAP_DAEMON_INTAKE_H_
 
 #include <array>
+#include <atomic>
 #include <chrono>
 #include <functional>
 #include <string>
@@ -38,7 +39,12 @@ struct RgbdMessage {
 // The edge between the wire and the SLAM threads: decodes and validates raw LCM messages and
 // enqueues them. Bad messages (decoder rejects, NaN-ridden scans, oversized payloads, stamps too
 // far in the future or going backwards on their channel) are counted per channel, reported
-// through the rate-limited log and dropped. OnMessage must be called from one thread at a time
+// through the rate-limited log and dropped.
+// Time resets: a laser stamp more than options.time_reset_threshold_s before the previous one
+// (a looping lcm-logplayer, a robot whose clock was set back) is not dropped but starts a new
+// time base: from then on every channel's stamps are shifted by one offset chosen so that the
+// reset scan lands kTimeResetGapS after the previous scan. The SLAM thus sees one monotonic
+// clock, as if the data had paused for kTimeResetGapS; published stamps are in that clock. OnMessage must be called from one thread at a time
 // (the LCM handler thread); the queues and counters may be read from any thread.
 class Intake {
  public:
@@ -58,6 +64,13 @@ class Intake {
   void set_decode_rgbd(bool decode) { decode_rgbd_ = decode; }
   // Stops intake: queued items can still be popped (drain), new ones are refused.
   void Close();
+  // Before any message: nothing stamped before `stamp_s` is accepted (after --resume, the
+  // restored map's last time), except laser stamps older by more than the time-reset
+  // threshold, which start a new time base after it.
+  void SeedStamps(double stamp_s) { last_stamp_s_.fill(stamp_s); }
+  // Number of time resets so far, and the current offset added to incoming stamps.
+  int64_t time_resets() const { return time_resets_; }
+  static constexpr double kTimeResetGapS = 1.0;
 
   BoundedQueue<SensorMessage>& sensor_queue() { return sensor_queue_; }
   BoundedQueue<RgbdMessage>& rgbd_queue() { return rgbd_queue_; }
@@ -69,8 +82,9 @@ class Intake {
 
  private:
   bool Reject(InputChannel channel, const std::string& kind, const std::string& why);
-  // Future and backwards checks of a decoded message's stamp.
-  bool CheckStamp(InputChannel channel, double stamp_s);
+  // Future check of a decoded message's raw stamp, then time-reset detection (laser) and the
+  // backwards check of the re-based stamp, which replaces *stamp_s.
+  bool CheckStamp(InputChannel channel, double* stamp_s);
   bool Enqueue(InputChannel channel, SensorMessage message);
 
   const io::SlamConfig slam_;
@@ -79,7 +93,9 @@ class Intake {
   const WallClock wall_clock_s_;
   std::array<std::string, kNumInputChannels> names_;
   std::array<ChannelCounters, kNumInputChannels> counters_;
-  std::array<double, kNumInputChannels> last_stamp_s_;  // handler thread only
+  std::array<double, kNumInputChannels> last_stamp_s_;  // re-based; handler thread only
+  double time_offset_s_ = 0.0;                            // handler thread only
+  std::atomic<int64_t> time_resets_{0};
   bool decode_rgbd_ = false;
   BoundedQueue<SensorMessage> sensor_queue_;
   BoundedQueue<RgbdMessage> rgbd_queue_;

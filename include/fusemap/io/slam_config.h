@@ -3,6 +3,8 @@
 
 #include <string>
 
+#include "fusemap/cloud/cloud_mapper.h"
+#include "fusemap/common/config_reader.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 
@@ -23,9 +25,15 @@ struct SlamConfig {
   ChannelNames channels;
   LidarChannelConfig lidar;
   pose_graph::MapBuilderOptions2D map_builder;
+  cloud::CloudMapperOptions cloud;  // RGB-D cloud binder; frames come on channels.rgbd
 };
 
-// Top-level keys: channels, lidar, local_slam, global_slam. Unknown keys, wrong types and
+// Reads the top-level keys channels, lidar, local_slam, global_slam and cloud from `reader`
+// into *config. Problems are recorded in the reader (its Finish() reports them), so a caller
+// may read top-level keys of its own (fusemapd's daemon:) from the same reader before that.
+void ParseSlamConfig(common::ConfigReader& reader, SlamConfig* config);
+
+// Top-level keys: channels, lidar, local_slam, global_slam, cloud. Unknown keys, wrong types and
 // out-of-range values fail with file:line and the key.
 bool LoadSlamConfig(const std::string& path, SlamConfig* config, std::string* error);
 

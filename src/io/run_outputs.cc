@@ -1,0 +1,141 @@
+#include "fusemap/io/run_outputs.h"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+#include <unordered_set>
+
+#include "fusemap/io/cloud_image.h"
+#include "fusemap/io/cloud_writer.h"
+#include "fusemap/io/map_writer.h"
+#include "fusemap/io/tum_trajectory.h"
+#include "fusemap/mapping/grid_image.h"
+
+namespace fusemap {
+namespace io {
+namespace {
+
+// Surface area is estimated by counting occupied cells of this edge: a surface crossing a cell
+// covers about one cell face of it.
+constexpr double kAreaCellM = 0.1;
+
+bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
+              const std::string& out, RunOutputsReport* report, std::string* error) {
+  const auto snapshot = run.builder->pose_graph().Snapshot();
+  const auto submaps = run.builder->pose_graph().submaps();
+  std::vector<mapping::PlacedGrid> grids;
+  for (size_t i = 0; i < submaps.size() && i < snapshot->T_map_submaps.size(); ++i) {
+    grids.emplace_back(snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
+                       &submaps[i]->grid());
+  }
+  if (grids.empty()) {
+    *error = "no submaps yet: no map written";
+    return false;
+  }
+  const mapping::GridImage image = mapping::RenderMap(grids, run.map_resolution_m);
+  MapImage map;
+  map.width = image.width;
+  map.height = image.height;
+  map.resolution_m = image.resolution_m;
+  map.origin_m = image.origin_m;
+  map.pixels = image.pixels;
+  if (!WriteMapPgmYaml(map, out + "map", error) || !WriteMapPng(map, xy, out + "map.png", error)) {
+    return false;
+  }
+  report->files.insert(report->files.end(), {out + "map.pgm", out + "map.yaml", out + "map.png"});
+  return true;
+}
+
+bool WriteCloud(const cloud::CloudMapper& mapper, const std::string& out,
+                RunOutputsReport* report, std::string* error) {
+  const cloud::ColorCloud::Ptr map_cloud = mapper.binder().GlobalCloud();
+  const std::string ply = out + "cloud.ply", pcd = out + "cloud.pcd";
+  const std::string removed = out + "cloud_removed.ply";
+  const std::string bt = out + "octomap.bt", ot = out + "octomap.ot", png = out + "cloud.png";
+  if (!WriteCloudPly(ply, *map_cloud, error) || !WriteCloudPcd(pcd, *map_cloud, error) ||
+      !WriteCloudPly(removed, mapper.binder().removed_points(), error) ||
+      !WriteOctoMaps(*map_cloud, mapper.options().octomap_resolution_m, bt, ot, error)) {
+    return false;
+  }
+  report->files.insert(report->files.end(), {ply, pcd, removed, bt, ot});
+  if (!map_cloud->empty()) {
+    if (!WriteCloudPng(*map_cloud, CloudImageOptions(), png, error)) return false;
+    report->files.push_back(png);
+  }
+  report->wrote_cloud = true;
+  report->cloud_summary = CloudSummaryLine(mapper, *map_cloud);
+  return true;
+}
+
+}  // namespace
+
+eval::Trajectory ToTrajectory(const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& poses) {
+  eval::Trajectory trajectory;
+  for (const auto& p : poses) {
+    if (!trajectory.empty() && p.stamp_s <= trajectory.back().stamp_s) continue;
+    trajectory.push_back({p.stamp_s, common::Rigid3d::FromRigid2d(p.pose)});
+  }
+  return trajectory;
+}
+
+std::string CloudSummaryLine(const cloud::CloudMapper& mapper, const cloud::ColorCloud& map_cloud) {
+  std::unordered_set<int64_t> cells;
+  for (const cloud::ColorPoint& p : map_cloud) {
+    const auto cell = [](float v) { return static_cast<int64_t>(std::floor(v / kAreaCellM)); };
+    // 21 bits per axis: +-100 km at 0.1 m.
+    cells.insert(((cell(p.x) & 0x1fffff) << 42) | ((cell(p.y) & 0x1fffff) << 21) |
+                 (cell(p.z) & 0x1fffff));
+  }
+  const double area_m2 = static_cast<double>(cells.size()) * kAreaCellM * kAreaCellM;
+  const cloud::CloudMapperStats& s = mapper.stats();
+  const int64_t dropped = s.frames_dropped_no_pose + s.frames_dropped_queue +
+                          s.frames_dropped_no_submap;
+  const double voxel_m = mapper.binder().options().voxel_size_m;
+  char line[320];
+  std::snprintf(line, sizeof(line),
+                "cloud_points=%zu cloud_frames_in=%lld cloud_frames_bound=%lld "
+                "cloud_frames_skipped_rate=%lld cloud_frames_dropped=%lld removed_dynamic=%lld "
+                "cloud_memory_mb=%.1f cloud_points_per_m2=%.0f cloud_points_per_m2_bound=%.0f",
+                map_cloud.size(), static_cast<long long>(s.frames_in),
+                static_cast<long long>(s.frames_bound),
+                static_cast<long long>(s.frames_skipped_rate), static_cast<long long>(dropped),
+                static_cast<long long>(mapper.binder().stats().points_removed_dynamic),
+                mapper.binder().MemoryBytes() / (1024.0 * 1024.0),
+                area_m2 > 0.0 ? static_cast<double>(map_cloud.size()) / area_m2 : 0.0,
+                1.0 / (voxel_m * voxel_m));
+  return line;
+}
+
+bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsReport* report,
+                     std::string* error) {
+  *report = RunOutputsReport();
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) {
+    *error = "cannot create output folder " + dir + ": " + ec.message();
+    return false;
+  }
+  const auto nodes = run.builder->NodePoses();
+  const auto dense = pose_graph::DensifyWithOdometry(nodes, *run.odometry);
+  std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
+  for (const auto& o : *run.odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+  const std::string out = dir + "/";
+  if (!WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
+      !WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||
+      !WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), error)) {
+    return false;
+  }
+  report->files.insert(report->files.end(),
+                       {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
+  std::vector<Eigen::Vector2d> xy;
+  for (const auto& p : dense) xy.push_back(p.pose.translation());
+  if (!WriteMap(run, xy, out, report, error)) return false;
+  if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {
+    return WriteCloud(*run.cloud_mapper, out, report, error);
+  }
+  return true;
+}
+
+}  // namespace io
+}  // namespace fusemap

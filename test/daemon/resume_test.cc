@@ -1,0 +1,309 @@
+// Checkpoint and --resume through the engine: a run stopped right after a checkpoint, resumed by
+// a fresh engine from the file, must end where the uninterrupted run ends (one thread, so both
+// are deterministic), with a trajectory that covers the whole run. Plus the resume policy:
+// corrupt checkpoint -> .prev, other version refused, other config warned about.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/math.h"
+#include "fusemap/daemon/engine.h"
+#include "fusemap/daemon/file_checkpointer.h"
+#include "fusemap/daemon/resume.h"
+#include "fusemap/io/lcm_conversions.h"
+#include "fusemap/io/tum_trajectory.h"
+#include "testing/synthetic_room.h"
+
+namespace fusemap {
+namespace daemon {
+namespace {
+
+constexpr double kStepM = 0.15;
+constexpr double kStartS = 1700000000.0;
+constexpr char kYaml[] = "# the test's configuration text\n";
+
+io::SlamConfig TestConfig() {
+  io::SlamConfig config;
+  auto& options = config.map_builder;
+  options.local_slam.use_imu = false;
+  options.local_slam.submaps.num_range_data = 10;
+  options.local_slam.use_online_correlative_scan_matching = false;
+  options.global_slam.optimize_every_n_nodes = 15;
+  auto& constraints = options.global_slam.constraint_builder;
+  constraints.sampling_ratio = 1.0;
+  constraints.max_constraint_distance_m = 3.0;
+  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
+  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
+  return config;
+}
+
+struct Message {
+  std::string channel;
+  std::vector<uint8_t> data;
+};
+
+// 1.1 turns around the synthetic room's island with drifting odometry twice per scan, so that
+// loop closures happen after the resume point.
+std::vector<Message> MakeLog() {
+  const auto walls = test_world::Room();
+  std::mt19937 rng(7);
+  std::vector<Message> log;
+  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
+  common::Rigid2d odom = test_world::ArcPose(0, kStepM);
+  for (int i = 0; i < num_scans; ++i) {
+    const double stamp_s = kStartS + 0.1 * i;
+    if (i > 0) {
+      const common::Rigid2d delta =
+          test_world::ArcPose(i - 1, kStepM).inverse() * test_world::ArcPose(i, kStepM);
+      const common::Rigid2d half(0.51 * delta.translation(),
+                                 0.5 * delta.angle_rad() + common::DegToRad(0.15));
+      odom = odom * half;
+      log.push_back({"ODOMETRY", io::EncodeOdometry({stamp_s - 0.05, odom})});
+      odom = odom * half;
+    }
+    log.push_back({"ODOMETRY", io::EncodeOdometry({stamp_s, odom})});
+    log.push_back({"LIDAR", io::EncodeLaserScan(test_world::SimulateScan(
+                                walls, test_world::ArcPose(i, kStepM), stamp_s, 0.02, &rng))});
+  }
+  return log;
+}
+
+class NullPublisher : public Publisher {
+ public:
+  void PublishPose(double, const common::Rigid2d&) override {}
+  void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot&) override {}
+  void PublishLoopClosure(double, int, const pose_graph::PoseGraph2D::Stats&, int) override {}
+  void PublishHealth(double, const HealthReport&) override {}
+};
+
+// With checkpoint_period_s tiny the engine offers a save after every processed message; this
+// one writes only after the `at_call`-th, i.e. after exactly that many queued messages.
+class SaveAfterMessage : public Checkpointer {
+ public:
+  SaveAfterMessage(FileCheckpointer* file, int at_call) : file_(file), at_call_(at_call) {}
+  bool Save(pose_graph::MapBuilder2D& builder, std::string* error) override {
+    return ++calls_ != at_call_ || file_->Save(builder, error);
+  }
+
+ private:
+  FileCheckpointer* file_;
+  const int at_call_;
+  int calls_ = 0;
+};
+
+// Feeds log[begin, end) into a started engine; all are valid, so all are queued.
+void Feed(Engine* engine, const std::vector<Message>& log, size_t begin, size_t end) {
+  for (size_t i = begin; i < end; ++i) {
+    ASSERT_TRUE(engine->intake().OnMessage(log[i].channel, log[i].data.data(),
+                                           static_cast<int>(log[i].data.size())))
+        << i;
+  }
+}
+
+double Distance(const common::Rigid2d& a, const common::Rigid2d& b) {
+  return (a.translation() - b.translation()).norm() +
+         std::abs(common::NormalizeAngle(a.angle_rad() - b.angle_rad()));
+}
+
+TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
+  const auto log = MakeLog();
+  const io::SlamConfig config = TestConfig();
+  RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
+  NullPublisher publisher;
+
+  Engine whole(config, DaemonOptions(), 1, OverflowPolicy::kBlock, &publisher, &quiet);
+  whole.Start();
+  Feed(&whole, log, 0, log.size());
+  whole.Finish();
+
+  const std::string dir = ::testing::TempDir() + "/resume_test";
+  std::filesystem::remove_all(dir);
+  const size_t cut = log.size() / 2;
+  {
+    DaemonOptions options;
+    options.checkpoint_period_s = 1e-9;
+    FileCheckpointer file(CheckpointPath(dir), kYaml);
+    SaveAfterMessage checkpointer(&file, static_cast<int>(cut));
+    Engine first(config, options, 1, OverflowPolicy::kBlock, &publisher, &quiet);
+    first.SetCheckpointer(&checkpointer);
+    first.Start();
+    Feed(&first, log, 0, cut);
+    first.Finish();  // "killed": what it does after the checkpoint is never used
+    ASSERT_EQ(file.stats().saved, 1);
+    EXPECT_GT(file.stats().last_bytes, 1000);
+    std::printf("checkpoint after %zu of %zu messages: %d nodes, %lld bytes, %.4f s\n", cut,
+                log.size(), file.stats().last_nodes,
+                static_cast<long long>(file.stats().last_bytes), file.stats().last_seconds);
+  }
+
+  ResumeCheckpoint checkpoint;
+  std::string error;
+  ASSERT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), kYaml, &checkpoint, &error),
+            ResumeStatus::kOk)
+      << error;
+  EXPECT_TRUE(checkpoint.warnings.empty());
+  Engine resumed(config, DaemonOptions(), 1, OverflowPolicy::kBlock, &publisher, &quiet);
+  resumed.Restore(checkpoint.contents.state);
+  resumed.Start();
+  Feed(&resumed, log, cut, log.size());
+  resumed.Finish();
+
+  // The graph: every node of the whole run, where the uninterrupted run put it.
+  const auto expected_nodes = whole.finished_builder().NodePoses();
+  const auto nodes = resumed.finished_builder().NodePoses();
+  ASSERT_EQ(nodes.size(), expected_nodes.size());
+  ASSERT_GT(nodes.size(), checkpoint.contents.state.pose_graph.nodes.size() + 20);
+  double max_node_error = 0.0;
+  for (size_t i = 0; i < nodes.size(); ++i) {
+    ASSERT_EQ(nodes[i].stamp_s, expected_nodes[i].stamp_s) << i;
+    max_node_error = std::max(max_node_error, Distance(nodes[i].pose, expected_nodes[i].pose));
+  }
+  EXPECT_LT(max_node_error, 1e-9);
+  EXPECT_EQ(resumed.finished_builder().pose_graph().stats().loop_closures_found,
+            whole.finished_builder().pose_graph().stats().loop_closures_found);
+
+  // trajectory.tum: whole span; node poses before the resume point, densified after it.
+  ASSERT_TRUE(resumed.WriteOutputs(dir, &error)) << error;
+  eval::Trajectory written;
+  ASSERT_TRUE(io::ReadTumTrajectoryFile(dir + "/trajectory.tum", &written, &error)) << error;
+  const auto expected_dense =
+      pose_graph::DensifyWithOdometry(expected_nodes, whole.odometry());
+  ASSERT_FALSE(written.empty());
+  EXPECT_NEAR(written.front().stamp_s, expected_dense.front().stamp_s, 1e-6);
+  EXPECT_NEAR(written.back().stamp_s, expected_dense.back().stamp_s, 1e-6);
+  const double resume_s = resumed.odometry().front().stamp_s;
+  const double first_new_node_s =
+      std::find_if(nodes.begin(), nodes.end(), [&](const auto& n) { return n.stamp_s >= resume_s; })
+          ->stamp_s;
+  int before = 0, after = 0;
+  double max_error = 0.0;
+  for (const auto& pose : written) {
+    const common::Rigid2d xy = pose.pose.ToRigid2d();
+    if (pose.stamp_s < resume_s) {
+      auto node = std::find_if(expected_nodes.begin(), expected_nodes.end(),
+                               [&](const auto& n) { return std::abs(n.stamp_s - pose.stamp_s) < 1e-6; });
+      ASSERT_NE(node, expected_nodes.end()) << pose.stamp_s;
+      max_error = std::max(max_error, Distance(xy, node->pose));
+      ++before;
+    } else if (pose.stamp_s >= first_new_node_s) {
+      // Past the first new node both densify from the same nodes (the TUM file keeps 1 µs).
+      auto sample = std::find_if(expected_dense.begin(), expected_dense.end(),
+                                 [&](const auto& p) { return std::abs(p.stamp_s - pose.stamp_s) < 1e-5; });
+      ASSERT_NE(sample, expected_dense.end()) << pose.stamp_s;
+      max_error = std::max(max_error, Distance(xy, sample->pose));
+      ++after;
+    }
+  }
+  EXPECT_GT(before, 20);
+  EXPECT_GT(after, 50);
+  EXPECT_LT(max_error, 1e-6);
+}
+
+TEST(ResumeTest, CorruptCheckpointFallsBackToPreviousAndOtherVersionIsRefused) {
+  const std::string dir = ::testing::TempDir() + "/resume_policy";
+  std::filesystem::remove_all(dir);
+  const auto log = MakeLog();
+  common::InlineExecutor executor;
+  pose_graph::MapBuilder2D builder(TestConfig().map_builder, &executor);
+  FileCheckpointer file(CheckpointPath(dir), kYaml);
+  std::string error;
+  int fed = 0;
+  auto feed_scans = [&](int scans) {
+    for (int n = 0; n < scans;) {
+      const auto& m = log[fed++];
+      if (m.channel == "ODOMETRY") {
+        sensor::OdometryData odometry;
+        ASSERT_TRUE(io::DecodeOdometry(m.data.data(), static_cast<int>(m.data.size()), &odometry,
+                                       &error));
+        builder.AddOdometry(odometry);
+        continue;
+      }
+      sensor::LaserScan scan;
+      ASSERT_TRUE(io::DecodeLaserScan(m.data.data(), static_cast<int>(m.data.size()),
+                                      TestConfig().lidar, &scan, &error));
+      builder.AddScan(scan);
+      ++n;
+    }
+  };
+  feed_scans(10);
+  ASSERT_TRUE(file.Save(builder, &error)) << error;
+  const size_t first_nodes = builder.NodePoses().size();
+  feed_scans(10);
+  ASSERT_TRUE(file.Save(builder, &error)) << error;
+  ASSERT_GT(builder.NodePoses().size(), first_nodes);
+
+  ResumeCheckpoint good;
+  ASSERT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), kYaml, &good, &error), ResumeStatus::kOk);
+  EXPECT_EQ(good.contents.state.pose_graph.nodes.size(), builder.NodePoses().size());
+  EXPECT_TRUE(good.warnings.empty());
+
+  // Truncated (a crash while copying it, a full disk): the previous one is used, with a reason.
+  const auto size = std::filesystem::file_size(CheckpointPath(dir));
+  std::filesystem::resize_file(CheckpointPath(dir), size / 2);
+  ResumeCheckpoint fallback;
+  ASSERT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), kYaml, &fallback, &error),
+            ResumeStatus::kOk)
+      << error;
+  EXPECT_EQ(fallback.used_path, CheckpointPath(dir) + ".prev");
+  EXPECT_EQ(fallback.contents.state.pose_graph.nodes.size(), first_nodes);
+  ASSERT_EQ(fallback.warnings.size(), 2u);
+  EXPECT_NE(fallback.warnings[0].find(".prev"), std::string::npos) << fallback.warnings[0];
+  // Set aside, so that the next save keeps the good one as .prev.
+  EXPECT_FALSE(std::filesystem::exists(CheckpointPath(dir)));
+  EXPECT_EQ(std::filesystem::file_size(CheckpointPath(dir) + ".rejected"), size / 2);
+  ASSERT_TRUE(file.Save(builder, &error)) << error;
+  ResumeCheckpoint after_save;
+  ASSERT_TRUE(io::ReadCheckpoint(CheckpointPath(dir) + ".prev", &after_save.contents, &error))
+      << error;
+  EXPECT_EQ(after_save.contents.state.pose_graph.nodes.size(), first_nodes);
+
+  // Another configuration text: usable, with a warning.
+  ResumeCheckpoint other_config;
+  ASSERT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), "other: 1\n", &other_config, &error),
+            ResumeStatus::kOk);
+  ASSERT_EQ(other_config.warnings.size(), 1u);
+  EXPECT_NE(other_config.warnings[0].find("different configuration"), std::string::npos);
+
+  // Both unreadable: refused.
+  std::filesystem::resize_file(CheckpointPath(dir), 10);
+  std::filesystem::resize_file(CheckpointPath(dir) + ".prev", 10);
+  ResumeCheckpoint none;
+  EXPECT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), kYaml, &none, &error),
+            ResumeStatus::kUnreadable);
+
+  // Another fusemap version: refused, naming both versions.
+  io::CheckpointContents foreign;
+  foreign.fusemap_version = "0.0.0-other";
+  foreign.options_yaml = kYaml;
+  foreign.state = builder.ExportState();
+  ASSERT_TRUE(io::WriteCheckpoint(CheckpointPath(dir), foreign, &error)) << error;
+  ResumeCheckpoint refused;
+  EXPECT_EQ(LoadResumeCheckpoint(CheckpointPath(dir), kYaml, &refused, &error),
+            ResumeStatus::kVersionMismatch);
+  EXPECT_NE(error.find("0.0.0-other"), std::string::npos) << error;
+}
+
+TEST(ResumeTest, ResumedTrajectoryWithoutRestoreIsTheDensifiedOne) {
+  std::vector<pose_graph::MapBuilder2D::TimedPose2d> nodes = {
+      {1.0, common::Rigid2d({0.0, 0.0}, 0.0)}, {2.0, common::Rigid2d({1.0, 0.0}, 0.0)}};
+  std::vector<sensor::OdometryData> odometry = {{1.0, common::Rigid2d({0.0, 0.0}, 0.0)},
+                                                {1.5, common::Rigid2d({0.5, 0.0}, 0.0)},
+                                                {2.0, common::Rigid2d({1.0, 0.0}, 0.0)}};
+  EXPECT_EQ(ResumedTrajectory(nodes, odometry).size(), 3u);
+  // Odometry only from 1.5 on: the node at 1.0 stays, then the samples.
+  odometry.erase(odometry.begin());
+  const auto resumed = ResumedTrajectory(nodes, odometry);
+  ASSERT_EQ(resumed.size(), 3u);
+  EXPECT_EQ(resumed[0].stamp_s, 1.0);
+  EXPECT_EQ(resumed[1].stamp_s, 1.5);
+  EXPECT_NEAR(resumed[2].pose.translation().x(), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace daemon
+}  // namespace fusemap
