@@ -4,8 +4,10 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <unordered_set>
 
+#include "fusemap/cloud/depth_carver.h"
 #include "fusemap/cloud/free_space_carver.h"
 #include "fusemap/cloud/map_block_index.h"
 #include "fusemap/cloud/region_stack.h"
@@ -28,6 +30,26 @@ bool IsFinite(const ColorPoint& p) {
 bool CloudBinderOptions::IsValid(std::string* error) const {
   if (!(voxel_size_m >= 0.001 && voxel_size_m <= 1.0)) {
     *error = "voxel_size_m must be in [0.001, 1]";
+    return false;
+  }
+  if (carve_pixel_stride < 1 || carve_pixel_stride > 64) {
+    *error = "carve_pixel_stride must be in [1, 64]";
+    return false;
+  }
+  if (carve_window_cells < 0 || carve_window_cells > 8) {
+    *error = "carve_window_cells must be in [0, 8]";
+    return false;
+  }
+  if (carve_submap_window < 0) {
+    *error = "carve_submap_window must be >= 0";
+    return false;
+  }
+  if (!(dynamic_no_return_carve_m >= 0.0)) {
+    *error = "dynamic_no_return_carve_m must be >= 0";
+    return false;
+  }
+  if (!(dynamic_carves_per_hit > 0.0 && dynamic_carves_per_hit <= 100.0)) {
+    *error = "dynamic_carves_per_hit must be in (0, 100]";
     return false;
   }
   if (dynamic_ray_stride < 1) {
@@ -61,6 +83,12 @@ CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader) {
   CloudBinderOptions options;
   reader.Get("voxel_size_m", &options.voxel_size_m);
   reader.Get("remove_dynamic", &options.remove_dynamic);
+  reader.Get("ray_carving", &options.ray_carving);
+  reader.Get("carve_pixel_stride", &options.carve_pixel_stride);
+  reader.Get("carve_window_cells", &options.carve_window_cells);
+  reader.Get("carve_submap_window", &options.carve_submap_window);
+  reader.Get("dynamic_no_return_carve_m", &options.dynamic_no_return_carve_m);
+  reader.Get("dynamic_carves_per_hit", &options.dynamic_carves_per_hit);
   reader.Get("dynamic_ray_stride", &options.dynamic_ray_stride);
   reader.Get("dynamic_margin_voxels", &options.dynamic_margin_voxels);
   reader.Get("dynamic_margin_range_fraction", &options.dynamic_margin_range_fraction);
@@ -85,6 +113,14 @@ CloudBinder::CloudBinder(const CloudBinderOptions& options)
   carver_options.margin_range_fraction = options.dynamic_margin_range_fraction;
   carver_options.max_ray_length_m = options.dynamic_max_ray_length_m;
   carver_.reset(new FreeSpaceCarver(carver_options));
+  DepthCarverOptions depth_options;
+  depth_options.pixel_stride = options.carve_pixel_stride;
+  depth_options.window_cells = options.carve_window_cells;
+  depth_options.max_range_m = options.dynamic_max_ray_length_m;
+  depth_options.margin_m = options.dynamic_margin_voxels * options.voxel_size_m;
+  depth_options.margin_range_fraction = options.dynamic_margin_range_fraction;
+  depth_options.no_return_carve_m = options.dynamic_no_return_carve_m;
+  depth_carver_.reset(new DepthCarver(depth_options));
 }
 
 CloudBinder::~CloudBinder() = default;
@@ -96,7 +132,8 @@ RegionStack& CloudBinder::GetOrCreateRegion(int submap_id) {
   const common::Rigid3d T_map_submap =
       pose == T_map_submaps_.end() ? common::Rigid3d::Identity() : pose->second;
   auto& region = regions_[submap_id];
-  region.reset(new RegionStack(options_.voxel_size_m, T_map_submap));
+  region.reset(
+      new RegionStack(options_.voxel_size_m, T_map_submap, options_.dynamic_carves_per_hit));
   stats_.regions = regions_.size();
   return *region;
 }
@@ -157,7 +194,7 @@ void CloudBinder::CarveFreeSpace(const common::Rigid3d& T_map_camera,
   for (const VoxelKey key : carved) blocks.insert(index_->BlockKey(UnpackVoxelKey(key)));
 
   const float inv_voxel_size = index_->inv_voxel_size();
-  std::vector<std::pair<int, uint32_t>> to_remove;
+  std::vector<RegionVoxelRef> seen_through;
   int cached_id = 0;
   RegionStack* cached_region = nullptr;
   for (const VoxelKey block : blocks) {
@@ -168,11 +205,24 @@ void CloudBinder::CarveFreeSpace(const common::Rigid3d& T_map_camera,
         cached_id = ref.region;
         cached_region = regions_.at(ref.region).get();
       }
-      RegionStack& region = *cached_region;
-      if (!region.voxels()[ref.slot].alive()) continue;
-      if (carved.count(KeyOf(region.CenterInMap(ref.slot), inv_voxel_size)) == 0) continue;
-      if (region.Carve(ref.slot, frame_index)) to_remove.emplace_back(ref.region, ref.slot);
+      if (!cached_region->voxels()[ref.slot].alive()) continue;
+      if (carved.count(KeyOf(cached_region->CenterInMap(ref.slot), inv_voxel_size)) == 0) continue;
+      seen_through.push_back(ref);
     }
+  }
+  ApplyCarves(seen_through, frame_index);
+}
+
+void CloudBinder::ApplyCarves(const std::vector<RegionVoxelRef>& carved, int frame_index) {
+  std::vector<std::pair<int, uint32_t>> to_remove;
+  int cached_id = 0;
+  RegionStack* cached_region = nullptr;
+  for (const RegionVoxelRef& ref : carved) {
+    if (cached_region == nullptr || ref.region != cached_id) {
+      cached_id = ref.region;
+      cached_region = regions_.at(ref.region).get();
+    }
+    if (cached_region->Carve(ref.slot, frame_index)) to_remove.emplace_back(ref.region, ref.slot);
   }
   // Removal after the scan: the index entries being iterated stay untouched meanwhile.
   for (const auto& victim : to_remove) {
@@ -182,14 +232,67 @@ void CloudBinder::CarveFreeSpace(const common::Rigid3d& T_map_camera,
   stats_.points_stored -= to_remove.size();
 }
 
+void CloudBinder::CarveWithDepth(int submap_id, const common::Rigid3d& T_submap_depth,
+                                 const sensor::PinholeIntrinsics& intrinsics,
+                                 const std::vector<uint16_t>& depth_mm) {
+  if (!options_.remove_dynamic || options_.ray_carving) return;
+  const auto start = std::chrono::steady_clock::now();
+  const int frame_index = next_frame_index_++;
+  ++stats_.carve_frames;
+  auto pose = T_map_submaps_.find(submap_id);
+  const common::Rigid3d T_map_submap =
+      pose == T_map_submaps_.end() ? common::Rigid3d::Identity() : pose->second;
+  const common::Rigid3d T_depth_map = (T_map_submap * T_submap_depth).inverse();
+  const Eigen::Matrix3f R = T_depth_map.rotation().toRotationMatrix().cast<float>();
+  const Eigen::Vector3f t = T_depth_map.translation().cast<float>();
+  depth_carver_->SetImage(intrinsics, depth_mm);
+  const DepthCarverOptions& depth_options = depth_carver_->options();
+  const float block_m = static_cast<float>(options_.voxel_size_m * index_->block_voxels());
+  const float block_radius_m = 0.5f * std::sqrt(3.f) * block_m;
+  const float far_m = static_cast<float>(
+      std::max(depth_options.max_range_m, depth_options.no_return_carve_m));
+  std::vector<RegionVoxelRef> seen_through;
+  int cached_id = 0;
+  const RegionStack* cached_region = nullptr;
+  for (const auto& block : index_->blocks()) {
+    // Cull whole blocks against the frustum (sphere test) before looking at their voxels.
+    const Eigen::Vector3f center_map =
+        (UnpackVoxelKey(block.first).cast<float>() + Eigen::Vector3f::Constant(0.5f)) * block_m;
+    const Eigen::Vector3f center_depth = R * center_map + t;
+    if (center_depth.z() < -block_radius_m || center_depth.z() > far_m + block_radius_m) continue;
+    bool outside = false;
+    for (const Eigen::Vector3f& normal : depth_carver_->side_normals()) {
+      outside = outside || normal.dot(center_depth) < -block_radius_m;
+    }
+    if (outside) continue;
+    for (const RegionVoxelRef& ref : block.second) {
+      if (std::abs(ref.region - submap_id) > options_.carve_submap_window) continue;
+      if (cached_region == nullptr || ref.region != cached_id) {
+        cached_id = ref.region;
+        cached_region = regions_.at(ref.region).get();
+      }
+      if (!cached_region->voxels()[ref.slot].alive()) continue;
+      // The voxel's mean lies on the observed surface; its centre may sit half a voxel in
+      // front of it, which at grazing angles is many centimetres of depth.
+      const Eigen::Vector3f mean_map = cached_region->map_cloud()[ref.slot].getVector3fMap();
+      if (depth_carver_->SeesThrough(R * mean_map + t)) {
+        seen_through.push_back(ref);
+      }
+    }
+  }
+  ApplyCarves(seen_through, frame_index);
+  stats_.last_depth_carve_ms = MillisecondsSince(start);
+}
+
 void CloudBinder::AddCloud(int submap_id, const common::Rigid3d& T_submap_camera,
                            const CameraCloud& cloud) {
   assert(cloud.points_camera != nullptr);
   const auto start = std::chrono::steady_clock::now();
-  const int frame_index = static_cast<int>(stats_.frames++);
+  const int frame_index = next_frame_index_++;
+  ++stats_.frames;
   RegionStack& region = GetOrCreateRegion(submap_id);
   const common::Rigid3d T_map_camera = region.T_map_submap() * T_submap_camera;
-  if (options_.remove_dynamic) {
+  if (options_.remove_dynamic && options_.ray_carving) {
     const auto carve_start = std::chrono::steady_clock::now();
     CarveFreeSpace(T_map_camera, *cloud.points_camera, frame_index);
     stats_.last_carve_ms = MillisecondsSince(carve_start);
@@ -212,12 +315,17 @@ void CloudBinder::AddCloud(int submap_id, const common::Rigid3d& T_submap_camera
   stats_.last_frame_ms = MillisecondsSince(start);
 }
 
-ColorCloud::Ptr CloudBinder::GlobalCloud() const {
+ColorCloud::Ptr CloudBinder::GlobalCloud(std::vector<uint16_t>* hits) const {
   ColorCloud::Ptr cloud(new ColorCloud);
   cloud->reserve(stats_.points_stored);
+  if (hits != nullptr) hits->clear();
   for (const auto& region : regions_) {
-    for (const ColorPoint& p : region.second->map_cloud().points) {
-      if (IsFinite(p)) cloud->push_back(p);
+    const auto& points = region.second->map_cloud().points;
+    const auto& voxels = region.second->voxels();
+    for (size_t slot = 0; slot < points.size(); ++slot) {
+      if (!IsFinite(points[slot])) continue;
+      cloud->push_back(points[slot]);
+      if (hits != nullptr) hits->push_back(voxels[slot].hits);
     }
   }
   return cloud;

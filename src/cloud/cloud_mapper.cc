@@ -47,7 +47,8 @@ bool CloudMapperOptions::IsValid(std::string* error) const {
     *error = "octomap_resolution_m must be in [0.005, 2]";
     return false;
   }
-  return frame.IsValid(error) && sync.IsValid(error) && binder.IsValid(error);
+  return frame.IsValid(error) && sync.IsValid(error) && binder.IsValid(error) &&
+         laser_free_space.IsValid(error);
 }
 
 CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
@@ -62,11 +63,13 @@ CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
   options.frame = ParseFrameCloudOptions(reader.Child("frame"));
   options.sync = ParsePoseInterpolatorOptions(reader.Child("sync"));
   options.binder = ParseCloudBinderOptions(reader.Child("binder"));
+  options.laser_free_space = ParseFreeColumnFilterOptions(reader.Child("laser_free_space"));
   // The children report their own keys; only this level's checks are left.
   CloudMapperOptions own = options;
   own.frame = FrameCloudOptions();
   own.sync = PoseInterpolatorOptions();
   own.binder = CloudBinderOptions();
+  own.laser_free_space = FreeColumnFilterOptions();
   std::string error;
   if (!own.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
   return options;
@@ -114,17 +117,30 @@ void CloudMapper::AddFrame(const sensor::RgbdFrame& frame) {
   ++stats_.frames_in;
   if (!options_.enabled) return;
   newest_stamp_s_ = std::max(newest_stamp_s_, frame.stamp_s);
-  if (frame.stamp_s - last_accepted_stamp_s_ < options_.min_frame_interval_s) {
-    ++stats_.frames_skipped_rate;
-    return;
-  }
+  const bool bind = frame.stamp_s - last_accepted_stamp_s_ >= options_.min_frame_interval_s;
+  const bool carve = options_.binder.remove_dynamic && !options_.binder.ray_carving;
+  if (!bind) ++stats_.frames_skipped_rate;
+  if (!bind && !carve) return;
   if (static_cast<int>(pending_.size()) >= options_.max_pending_frames) {
-    pending_.pop_front();
+    // Losing a carve-only frame costs little (its neighbours carve too); keep frames to bind.
+    auto victim = std::find_if(pending_.begin(), pending_.end(),
+                               [](const PendingFrame& p) { return !p.bind; });
+    pending_.erase(victim == pending_.end() ? pending_.begin() : victim);
     ++stats_.frames_dropped_queue;
   }
-  // The rate limit counts from accepted frames: whether one binds is known only later.
-  last_accepted_stamp_s_ = frame.stamp_s;
-  pending_.push_back(frame);
+  if (bind) {
+    // The rate limit counts from accepted frames: whether one binds is known only later.
+    last_accepted_stamp_s_ = frame.stamp_s;
+    pending_.push_back({frame, true});
+  } else {
+    PendingFrame depth_only{sensor::RgbdFrame(), false};
+    depth_only.frame.stamp_s = frame.stamp_s;
+    depth_only.frame.depth_intrinsics = frame.depth_intrinsics;
+    depth_only.frame.T_color_depth = frame.T_color_depth;
+    depth_only.frame.T_base_color = frame.T_base_color;
+    depth_only.frame.depth_mm = frame.depth_mm;
+    pending_.push_back(std::move(depth_only));
+  }
   ProcessPending();
 }
 
@@ -135,13 +151,13 @@ void CloudMapper::Finish() {
 
 void CloudMapper::ProcessPending() {
   while (!pending_.empty()) {
-    const sensor::RgbdFrame& frame = pending_.front();
+    const sensor::RgbdFrame& frame = pending_.front().frame;
     // After the end of input no later pose will come, so waiting is pointless.
     const double now_s = finished_ ? frame.stamp_s + options_.sync.hold_s + 1.0 : newest_stamp_s_;
     const PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
     if (result.status == PoseInterpolator::Status::kWait) return;
     if (result.status == PoseInterpolator::Status::kReady) {
-      Bind(frame, result.T_map_base);
+      Bind(pending_.front(), result.T_map_base);
     } else {
       ++stats_.frames_dropped_no_pose;
     }
@@ -157,22 +173,30 @@ const CloudMapper::Binding* CloudMapper::BindingAt(double stamp_s) const {
   return &*std::prev(it);
 }
 
-void CloudMapper::Bind(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base) {
+void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_local_base) {
+  const sensor::RgbdFrame& frame = pending.frame;
   const Binding* binding = BindingAt(frame.stamp_s);
   if (binding == nullptr) {
     ++stats_.frames_dropped_no_submap;
     return;
   }
+  const common::Rigid3d T_base_color =
+      options_.override_extrinsic ? ExtrinsicFromConfig(options_) : frame.T_base_color;
+  const common::Rigid3d T_submap_base =
+      common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_base);
+  if (options_.binder.remove_dynamic && !options_.binder.ray_carving) {
+    binder_.CarveWithDepth(binding->submap_id, T_submap_base * T_base_color * frame.T_color_depth,
+                           frame.depth_intrinsics, frame.depth_mm);
+    ++stats_.frames_carved;
+  }
+  if (!pending.bind) return;
   CameraCloud cloud = BuildFrameCloud(frame, options_.frame, &stats_.last_frame);
-  if (options_.override_extrinsic) cloud.T_base_camera = ExtrinsicFromConfig(options_);
+  cloud.T_base_camera = T_base_color;
   if (!cloud.points_camera || cloud.points_camera->empty()) {
     ++stats_.frames_empty;
     return;
   }
-  const common::Rigid3d T_submap_camera =
-      common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_base) *
-      cloud.T_base_camera;
-  binder_.AddCloud(binding->submap_id, T_submap_camera, cloud);
+  binder_.AddCloud(binding->submap_id, T_submap_base * cloud.T_base_camera, cloud);
   ++stats_.frames_bound;
 }
 

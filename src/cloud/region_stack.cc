@@ -17,9 +17,11 @@ ColorPoint NanPoint() {
 
 }  // namespace
 
-RegionStack::RegionStack(double voxel_size_m, const common::Rigid3d& T_map_submap)
+RegionStack::RegionStack(double voxel_size_m, const common::Rigid3d& T_map_submap,
+                         double carves_per_hit)
     : voxel_size_m_(static_cast<float>(voxel_size_m)),
       inv_voxel_size_(static_cast<float>(1.0 / voxel_size_m)),
+      carves_per_hit_(static_cast<float>(carves_per_hit)),
       map_cloud_(new ColorCloud) {
   assert(voxel_size_m > 0.0);
   map_cloud_->is_dense = false;
@@ -119,7 +121,9 @@ bool RegionStack::Carve(uint32_t slot, int frame_index) {
   // refuses every carve near a surface the carving frame itself observed (and within a margin
   // before the ray's end), so a carve is strong evidence; waiting for carves > hits left the
   // last few positions of a walking person in the map (test: PersonWalkingAcrossLeavesNoTrail).
-  return voxel.carves >= voxel.hits;
+  // carves_per_hit > 1 balances carving with more frames than are bound (projective carving
+  // uses every frame, hits count only the bound ones).
+  return static_cast<float>(voxel.carves) >= carves_per_hit_ * static_cast<float>(voxel.hits);
 }
 
 ColorPoint RegionStack::Remove(uint32_t slot) {

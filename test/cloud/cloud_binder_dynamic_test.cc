@@ -40,6 +40,14 @@ double IntersectBox(const Eigen::Vector3d& o, const Eigen::Vector3d& d, const Bo
 }
 
 // Camera at `position` looking along map yaw `yaw_rad`, optical frame (z forward, y down).
+// These tests exercise the ray-casting carver (AddCloud carves with each cloud's own rays);
+// projective carving against depth images is tested in depth_carver_test.cc.
+CloudBinderOptions RayCarvingOptions() {
+  CloudBinderOptions options;
+  options.ray_carving = true;
+  return options;
+}
+
 Rigid3d CameraPose(const Eigen::Vector3d& position, double yaw_rad) {
   Eigen::Matrix3d R_base_optical;
   R_base_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
@@ -99,7 +107,7 @@ TEST(CloudBinderDynamicTest, PersonSeenOnceThenSeenThroughIsRemovedWallKept) {
   const Box wall{{4.0, -2.5, 0.0}, {4.1, 2.5, 3.5}};
   const Box floor{{-1.0, -2.5, -0.1}, {4.0, 2.5, 0.0}};
   const Box person{{2.0, -0.3, 0.0}, {2.4, 0.3, 1.8}};
-  CloudBinder binder{CloudBinderOptions()};
+  CloudBinder binder{RayCarvingOptions()};
   // The second frame is bound to another submap: carving must cross regions.
   const Rigid3d T_map_submap1(Eigen::Vector3d(0.5, 0.2, 0.0),
                               Eigen::Quaterniond(Eigen::AngleAxisd(0.1, Eigen::Vector3d::UnitZ())));
@@ -137,7 +145,7 @@ TEST(CloudBinderDynamicTest, PersonSeenOnceThenSeenThroughIsRemovedWallKept) {
 TEST(CloudBinderDynamicTest, PersonWalkingAcrossLeavesNoTrail) {
   const Box wall{{4.0, -3.0, 0.0}, {4.1, 3.0, 2.5}};
   const Box floor{{-1.0, -3.0, -0.1}, {4.0, 3.0, 0.0}};
-  CloudBinder binder{CloudBinderOptions()};
+  CloudBinder binder{RayCarvingOptions()};
   binder.SetSubmapPose(0, Rigid3d::Identity());
   std::mt19937 rng(2);
   const Rigid3d T_map_camera = CameraPose({0.0, 0.0, 1.0}, 0.0);
@@ -171,7 +179,7 @@ TEST(CloudBinderDynamicTest, WallSeenAtGrazingAnglesManyTimesStays) {
   const Box left_wall{{-1.0, 1.0, 0.0}, {12.0, 1.1, 2.5}};
   const Box right_wall{{-1.0, -1.1, 0.0}, {12.0, -1.0, 2.5}};
   const Box floor{{-1.0, -1.0, -0.1}, {12.0, 1.0, 0.0}};
-  CloudBinder binder{CloudBinderOptions()};
+  CloudBinder binder{RayCarvingOptions()};
   std::mt19937 rng(3);
   for (int step = 0; step < 30; ++step) {
     const int submap = step / 10;

@@ -113,6 +113,23 @@ TEST(CloudMapperTest, RateLimitAndQueueBoundAreCounted) {
   EXPECT_EQ(mapper.stats().frames_in, 8);
 }
 
+TEST(CloudMapperTest, RateSkippedFramesStillCarve) {
+  CloudMapperOptions options = TestOptions();
+  options.binder.remove_dynamic = true;  // projective carving (ray_carving defaults to false)
+  options.min_frame_interval_s = 0.125;
+  CloudMapper mapper(options);
+  mapper.AddLocalPose(0.0, common::Rigid2d::Identity(), 0, common::Rigid2d::Identity());
+  for (int i = 1; i <= 8; ++i) mapper.AddFrame(WallFrame(0.05 * i));
+  mapper.AddLocalPose(0.45, common::Rigid2d::Identity(), 0, common::Rigid2d::Identity());
+  // Three frames are bound (0.05, 0.2, 0.35 s) but all eight carve free space.
+  EXPECT_EQ(mapper.stats().frames_bound, 3);
+  EXPECT_EQ(mapper.stats().frames_carved, 8);
+  EXPECT_EQ(mapper.binder().stats().carve_frames, 8);
+  // A static wall seen by every frame is never carved away.
+  EXPECT_EQ(mapper.binder().stats().points_removed_dynamic, 0);
+  EXPECT_GT(mapper.binder().stats().points_stored, 0u);
+}
+
 TEST(CloudMapperTest, ConfiguredExtrinsicOverridesTheFramesOwn) {
   CloudMapperOptions options = TestOptions();
   options.override_extrinsic = true;

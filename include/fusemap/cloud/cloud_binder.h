@@ -12,17 +12,35 @@
 #include "fusemap/cloud/cloud_types.h"
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/rigid_transform.h"
+#include "fusemap/sensor/rgbd_frame.h"
 
 namespace fusemap {
 namespace cloud {
 
+class DepthCarver;
 class FreeSpaceCarver;
 class MapBlockIndex;
 class RegionStack;
+struct RegionVoxelRef;
 
 struct CloudBinderOptions {
   double voxel_size_m = 0.03;  // merge grid of every region, in submap coordinates
   bool remove_dynamic = true;
+  // How frames see through map points: false = projectively, against each frame's depth image
+  // (CarveWithDepth, cheap enough for every frame); true = by casting rays from the points of
+  // each bound cloud in AddCloud (FreeSpaceCarver; for clouds without a depth image).
+  bool ray_carving = false;
+  int carve_pixel_stride = 4;  // projective: depth image cell size, pixels
+  int carve_window_cells = 1;  // projective: nearest depth within +-this many cells counts
+  double dynamic_no_return_carve_m = 3.0;  // projective: see DepthCarver::SeesThrough
+  // Projective: a frame bound to submap s carves only regions s - w .. s + w. Submaps close in
+  // time share local SLAM's odometry chain and agree to millimetres; a region from an earlier
+  // lap is placed by loop closure, and a 1 deg / 5 cm disagreement with the current frame's
+  // pose moves a wall seen at a 15 deg grazing angle 20 cm in depth - in front of what the
+  // frame measures, so it would be carved. People are carved within a few seconds anyway.
+  int carve_submap_window = 2;
+  // A voxel is dynamic once carves >= dynamic_carves_per_hit * hits (both counted in frames).
+  double dynamic_carves_per_hit = 1.0;
   int dynamic_ray_stride = 4;     // every n-th point of a frame casts a free-space ray
   int dynamic_margin_voxels = 3;  // rays carve only up to this many voxels before their end,
   double dynamic_margin_range_fraction = 0.05;  // or this fraction of their range if more
@@ -35,13 +53,15 @@ struct CloudBinderOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Keys: voxel_size_m, remove_dynamic, dynamic_ray_stride, dynamic_margin_voxels,
+// Keys: voxel_size_m, remove_dynamic, ray_carving, carve_pixel_stride, carve_window_cells,
+// carve_submap_window, dynamic_no_return_carve_m, dynamic_carves_per_hit, dynamic_ray_stride, dynamic_margin_voxels,
 // dynamic_margin_range_fraction, dynamic_max_ray_length_m, index_block_voxels,
 // regions_with_merge_index.
 CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader);
 
 struct CloudBinderStats {
-  int64_t frames = 0;
+  int64_t frames = 0;        // clouds bound
+  int64_t carve_frames = 0;  // depth images carved with
   int64_t points_in = 0;     // finite points handed to AddCloud
   size_t points_stored = 0;  // live voxels = points in GlobalCloud()
   size_t regions = 0;
@@ -51,7 +71,8 @@ struct CloudBinderStats {
   size_t last_update_points = 0;
   double last_update_ms = 0.0;
   double last_frame_ms = 0.0;  // last AddCloud, carving included
-  double last_carve_ms = 0.0;
+  double last_carve_ms = 0.0;        // ray carving inside the last AddCloud
+  double last_depth_carve_ms = 0.0;  // last CarveWithDepth
 };
 
 // Binds RGB-D frame clouds to laser submaps: each cloud is stored in the frame of the submap
@@ -74,11 +95,20 @@ class CloudBinder {
   // Re-poses exactly the listed regions (submaps without clouds are remembered for later).
   void OnSubmapsMoved(const std::vector<std::pair<int, common::Rigid3d>>& moved);
 
+  // Counts a depth image (depth camera at T_submap_depth in submap `submap_id`'s frame) as
+  // free-space evidence against every live map point it sees through (projective carving; a
+  // no-op with ray_carving or without remove_dynamic). Call it for every frame, bound or not,
+  // before AddCloud of the same frame.
+  void CarveWithDepth(int submap_id, const common::Rigid3d& T_submap_depth,
+                      const sensor::PinholeIntrinsics& intrinsics,
+                      const std::vector<uint16_t>& depth_mm);
+
   // Binds a filtered frame cloud (colour camera frame) to `submap_id`.
   void AddCloud(int submap_id, const common::Rigid3d& T_submap_camera, const CameraCloud& cloud);
 
   // All live points in the map frame (one per occupied region voxel).
-  ColorCloud::Ptr GlobalCloud() const;
+  // With `hits`, also how many frames saw each point's voxel (same order).
+  ColorCloud::Ptr GlobalCloud(std::vector<uint16_t>* hits = nullptr) const;
   // One region's live points in the map frame; empty if the submap has no clouds.
   ColorCloud::Ptr RegionCloud(int submap_id) const;
   // Points removed as dynamic, in the map frame at the time of removal.
@@ -96,6 +126,8 @@ class CloudBinder {
   void IndexSlots(int submap_id, const RegionStack& region, const std::vector<uint32_t>& slots);
   void CarveFreeSpace(const common::Rigid3d& T_map_camera, const ColorCloud& points_camera,
                       int frame_index);
+  // Counts a carve of each listed voxel and removes the ones judged dynamic.
+  void ApplyCarves(const std::vector<RegionVoxelRef>& carved, int frame_index);
 
   CloudBinderOptions options_;
   std::map<int, std::unique_ptr<RegionStack>> regions_;
@@ -103,6 +135,8 @@ class CloudBinder {
   std::vector<int> recent_regions_;  // most recent last; at most regions_with_merge_index
   std::unique_ptr<MapBlockIndex> index_;
   std::unique_ptr<FreeSpaceCarver> carver_;
+  std::unique_ptr<DepthCarver> depth_carver_;
+  int next_frame_index_ = 0;  // shared by bound clouds and carving images
   ColorCloud::Ptr removed_points_;
   CloudBinderStats stats_;
 };

@@ -9,6 +9,7 @@
 
 #include "fusemap/cloud/cloud_binder.h"
 #include "fusemap/cloud/frame_cloud.h"
+#include "fusemap/cloud/free_column_filter.h"
 #include "fusemap/cloud/pose_interpolator.h"
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/rigid_transform.h"
@@ -19,8 +20,9 @@ namespace cloud {
 
 struct CloudMapperOptions {
   bool enabled = true;
-  // At most one frame per interval is turned into a cloud: outlier removal costs tens of ms a
-  // frame, and consecutive frames at 10-25 Hz see nearly the same surfaces.
+  // At most one frame per interval is turned into a cloud: filtering costs tens of ms a frame,
+  // and consecutive frames at 10-25 Hz see nearly the same surfaces. The others still carve
+  // free space (projective carving, a few ms), so moving people are removed at the full rate.
   double min_frame_interval_s = 0.0;
   // Frames waiting for a laser pose newer than themselves; beyond this the oldest is dropped.
   int max_pending_frames = 32;
@@ -32,19 +34,22 @@ struct CloudMapperOptions {
   FrameCloudOptions frame;
   PoseInterpolatorOptions sync;
   CloudBinderOptions binder;
+  // Applied to the map when it is written out, against the laser map (see the header).
+  FreeColumnFilterOptions laser_free_space;
 
   bool IsValid(std::string* error) const;
 };
 
 // Keys: enabled, min_frame_interval_s, max_pending_frames, override_extrinsic,
 // T_base_camera_xyz_m, T_base_camera_rpy_deg (roll, pitch, yaw about x, y, z of the optical
-// frame's parent), octomap_resolution_m, frame, sync, binder.
+// frame's parent), octomap_resolution_m, frame, sync, binder, laser_free_space.
 CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader);
 
 struct CloudMapperStats {
   int64_t frames_in = 0;
   int64_t frames_bound = 0;
   int64_t frames_skipped_rate = 0;     // within min_frame_interval_s of the last bound frame
+  int64_t frames_carved = 0;           // depth images used for free-space carving
   int64_t frames_dropped_no_pose = 0;  // no laser pose could be interpolated in time
   int64_t frames_dropped_queue = 0;    // pending queue full
   int64_t frames_dropped_no_submap = 0;  // taken before the first submap existed
@@ -91,14 +96,18 @@ class CloudMapper {
 
   // Handles queued frames in stamp order until the oldest must keep waiting.
   void ProcessPending();
-  void Bind(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base);
+  struct PendingFrame {
+    sensor::RgbdFrame frame;  // carve-only frames keep no colour image
+    bool bind;                // false: within min_frame_interval_s, only carves
+  };
+  void Bind(const PendingFrame& pending, const common::Rigid2d& T_local_base);
   const Binding* BindingAt(double stamp_s) const;
 
   const CloudMapperOptions options_;
   CloudBinder binder_;
   PoseInterpolator interpolator_;
   std::deque<Binding> bindings_;  // time-ordered, trimmed like the interpolator's history
-  std::deque<sensor::RgbdFrame> pending_;
+  std::deque<PendingFrame> pending_;
   std::map<int, common::Rigid2d> T_map_submaps_;  // as last placed in the binder
   double newest_stamp_s_ = -1e300;
   double last_accepted_stamp_s_ = -1e300;

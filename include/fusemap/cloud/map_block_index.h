@@ -37,6 +37,11 @@ class MapBlockIndex {
     return BlockKeyOf(voxel_index, block_voxels_);
   }
   float inv_voxel_size() const { return inv_voxel_size_; }
+  int block_voxels() const { return block_voxels_; }
+  // Every non-empty block by key, for visiting the map voxels near a camera.
+  const std::unordered_map<VoxelKey, std::vector<RegionVoxelRef>>& blocks() const {
+    return blocks_;
+  }
   size_t MemoryBytes() const;
 
  private:

@@ -35,7 +35,9 @@ struct RegionVoxel {
 // valid. Invariant: map_cloud()[i] == T_map_submap * voxels()[i].mean_submap for live slots.
 class RegionStack {
  public:
-  RegionStack(double voxel_size_m, const common::Rigid3d& T_map_submap);
+  // carves_per_hit: see Carve().
+  RegionStack(double voxel_size_m, const common::Rigid3d& T_map_submap,
+              double carves_per_hit = 1.0);
 
   // Merges points given in the camera frame into the grid. Slots of voxels this call created
   // are appended to *new_slots (for the caller's map-frame index).
@@ -71,6 +73,7 @@ class RegionStack {
 
   float voxel_size_m_;
   float inv_voxel_size_;
+  float carves_per_hit_;
   common::Rigid3d T_map_submap_;
   Eigen::Matrix3f R_map_submap_;
   Eigen::Vector3f t_map_submap_;
