@@ -1,4 +1,5 @@
 #include "fusemap/io/cloud_image.h"
+#include "fusemap/io/image_file.h"
 
 #include <algorithm>
 #include <cmath>
@@ -65,18 +66,7 @@ bool WriteCloudPng(const cloud::ColorCloud& cloud, const CloudImageOptions& opti
       }
     }
   }
-  bool written = false;
-  try {
-    written = cv::imwrite(path, image);
-  } catch (const cv::Exception& e) {
-    *error = path + ": " + e.what();
-    return false;
-  }
-  if (!written) {
-    *error = path + ": cannot write PNG";
-    return false;
-  }
-  return true;
+  return WriteImageFile(image, path, error);
 }
 
 }  // namespace io

@@ -1,4 +1,5 @@
 #include "fusemap/io/map_writer.h"
+#include "fusemap/io/image_file.h"
 
 #include <cstdio>
 #include <opencv2/core.hpp>
@@ -50,17 +51,7 @@ bool WriteMapPgmYaml(const MapImage& map, const std::string& path_prefix, std::s
   if (!CheckMap(map, error)) return false;
   const std::string pgm_path = path_prefix + ".pgm";
   const std::string yaml_path = path_prefix + ".yaml";
-  bool written = false;
-  try {
-    written = cv::imwrite(pgm_path, WrapPixels(map), {cv::IMWRITE_PXM_BINARY, 1});
-  } catch (const cv::Exception& e) {
-    *error = pgm_path + ": " + e.what();
-    return false;
-  }
-  if (!written) {
-    *error = pgm_path + ": cannot write";
-    return false;
-  }
+  if (!WriteImageFile(WrapPixels(map), pgm_path, error, {cv::IMWRITE_PXM_BINARY, 1})) return false;
   std::FILE* file = std::fopen(yaml_path.c_str(), "w");
   if (file == nullptr) {
     *error = yaml_path + ": cannot open for writing";
@@ -93,18 +84,7 @@ bool WriteMapPng(const MapImage& map, const std::vector<Eigen::Vector2d>& trajec
     cv::circle(canvas, points.front(), radius, cv::Scalar(0, 170, 0), 2, cv::LINE_AA, kShiftBits);
     cv::circle(canvas, points.back(), radius, cv::Scalar(0, 0, 220), 2, cv::LINE_AA, kShiftBits);
   }
-  bool written = false;
-  try {
-    written = cv::imwrite(path, canvas);
-  } catch (const cv::Exception& e) {
-    *error = path + ": " + e.what();
-    return false;
-  }
-  if (!written) {
-    *error = path + ": cannot write";
-    return false;
-  }
-  return true;
+  return WriteImageFile(canvas, path, error);
 }
 
 }  // namespace io

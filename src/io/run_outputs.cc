@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <string>
 #include <system_error>
 #include <unordered_set>
 
@@ -21,7 +22,8 @@ namespace {
 constexpr double kAreaCellM = 0.1;
 
 bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
-              const std::string& out, RunOutputsReport* report, std::string* error) {
+              const std::string& out, RunOutputsReport* report, mapping::GridImage* image_out,
+              std::string* error) {
   const auto snapshot = run.builder->pose_graph().Snapshot();
   const auto submaps = run.builder->pose_graph().submaps();
   std::vector<mapping::PlacedGrid> grids;
@@ -44,17 +46,41 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
     return false;
   }
   report->files.insert(report->files.end(), {out + "map.pgm", out + "map.yaml", out + "map.png"});
+  *image_out = image;
   return true;
 }
 
-bool WriteCloud(const cloud::CloudMapper& mapper, const std::string& out,
-                RunOutputsReport* report, std::string* error) {
-  const cloud::ColorCloud::Ptr map_cloud = mapper.binder().GlobalCloud();
+// True where the laser map is free at (x, y) and within margin_m around it.
+bool FreeInLaserMap(const mapping::GridImage& map, double margin_m, double x_m, double y_m) {
+  const int col = static_cast<int>(std::floor((x_m - map.origin_m.x()) / map.resolution_m));
+  const int row = map.height - 1 -
+                  static_cast<int>(std::floor((y_m - map.origin_m.y()) / map.resolution_m));
+  const int r = static_cast<int>(std::ceil(margin_m / map.resolution_m));
+  if (col - r < 0 || row - r < 0 || col + r >= map.width || row + r >= map.height) return false;
+  for (int dr = -r; dr <= r; ++dr) {
+    for (int dc = -r; dc <= r; ++dc) {
+      if (map.at(row + dr, col + dc) != mapping::kFreePixel) return false;
+    }
+  }
+  return true;
+}
+
+bool WriteCloud(const cloud::CloudMapper& mapper, const mapping::GridImage& laser_map,
+                const std::string& out, RunOutputsReport* report, std::string* error) {
+  std::vector<uint16_t> hits;
+  const cloud::ColorCloud::Ptr map_cloud = mapper.binder().GlobalCloud(&hits);
+  cloud::ColorCloud removed_points = mapper.binder().removed_points();
+  const cloud::FreeColumnFilterOptions& free_space = mapper.options().laser_free_space;
+  const size_t removed_free = cloud::RemoveInFreeColumns(
+      [&](double x_m, double y_m) {
+        return FreeInLaserMap(laser_map, free_space.margin_m, x_m, y_m);
+      },
+      free_space, hits, map_cloud.get(), &removed_points);
   const std::string ply = out + "cloud.ply", pcd = out + "cloud.pcd";
   const std::string removed = out + "cloud_removed.ply";
   const std::string bt = out + "octomap.bt", ot = out + "octomap.ot", png = out + "cloud.png";
   if (!WriteCloudPly(ply, *map_cloud, error) || !WriteCloudPcd(pcd, *map_cloud, error) ||
-      !WriteCloudPly(removed, mapper.binder().removed_points(), error) ||
+      !WriteCloudPly(removed, removed_points, error) ||
       !WriteOctoMaps(*map_cloud, mapper.options().octomap_resolution_m, bt, ot, error)) {
     return false;
   }
@@ -64,7 +90,8 @@ bool WriteCloud(const cloud::CloudMapper& mapper, const std::string& out,
     report->files.push_back(png);
   }
   report->wrote_cloud = true;
-  report->cloud_summary = CloudSummaryLine(mapper, *map_cloud);
+  report->cloud_summary = CloudSummaryLine(mapper, *map_cloud) +
+                          " removed_laser_free=" + std::to_string(removed_free);
   return true;
 }
 
@@ -130,9 +157,10 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : dense) xy.push_back(p.pose.translation());
-  if (!WriteMap(run, xy, out, report, error)) return false;
+  mapping::GridImage laser_map;
+  if (!WriteMap(run, xy, out, report, &laser_map, error)) return false;
   if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {
-    return WriteCloud(*run.cloud_mapper, out, report, error);
+    return WriteCloud(*run.cloud_mapper, laser_map, out, report, error);
   }
   return true;
 }
