@@ -19,17 +19,8 @@ SRC=$(realpath "$(dirname "$0")/..")
 FUSEMAPD=$BUILD/tools/fusemapd/fusemapd SIM=$BUILD/tools/sim/fusemap_sim
 for f in "$FUSEMAPD" "$SIM"; do [ -x "$f" ] || { echo "missing $f (build it)" >&2; exit 2; }; done
 
-if [ "${FUSEMAP_IN_NETNS:-}" != 1 ]; then
-  if unshare -n true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -n -- "$0" "$@"
-  elif unshare -rn true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -rn -- "$0" "$@"
-  fi
-  echo "cannot create a network namespace (unshare -n / -rn)" >&2
-  exit 1
-fi
-[ "$(ip -o link show | wc -l)" -eq 1 ] || { echo "not in a private namespace" >&2; exit 1; }
-ip link set lo up multicast on && ip route add 224.0.0.0/4 dev lo || exit 1
+. "$SRC/tools/netns_lib.sh"
+netns_enter 1 lcm-logplayer -- "$0" "$@"
 URL='udpm://239.255.76.67:7667?ttl=0'
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/bench_daemon.XXXXXX")
 trap 'rm -rf "$WORK"' EXIT

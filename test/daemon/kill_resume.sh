@@ -12,28 +12,8 @@ if [ $# -ne 3 ]; then
 fi
 FUSEMAPD=$1 SIM=$2 SRC=$3
 
-if [ "${FUSEMAP_IN_NETNS:-}" != 1 ]; then
-  for tool in unshare ip lcm-logplayer; do
-    if ! command -v "$tool" >/dev/null; then
-      echo "SKIP: $tool not installed"
-      exit 77
-    fi
-  done
-  if unshare -n true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -n -- "$0" "$@"
-  elif unshare -rn true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -rn -- "$0" "$@"
-  fi
-  echo "SKIP: cannot create a network namespace here (unshare -n / -rn not permitted)"
-  exit 77
-fi
-
-if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
-  echo "FAIL: not in a private network namespace" >&2
-  exit 1
-fi
-ip link set lo up multicast on || exit 1
-ip route add 224.0.0.0/4 dev lo || exit 1
+. "$SRC/tools/netns_lib.sh"
+netns_enter 77 lcm-logplayer -- "$0" "$@"
 URL='udpm://239.255.76.67:7667?ttl=0'
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/fusemapd_resume.XXXXXX")

@@ -11,30 +11,8 @@ if [ $# -ne 4 ]; then
 fi
 FUSEMAPD=$1 SIM=$2 CHECK=$3 SRC=$4
 
-if [ "${FUSEMAP_IN_NETNS:-}" != 1 ]; then
-  for tool in unshare ip lcm-logplayer lcm-logger; do
-    if ! command -v "$tool" >/dev/null; then
-      echo "SKIP: $tool not installed"
-      exit 77
-    fi
-  done
-  # Root may create a network namespace directly; others through a user namespace.
-  if unshare -n true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -n -- "$0" "$@"
-  elif unshare -rn true 2>/dev/null; then
-    exec env FUSEMAP_IN_NETNS=1 unshare -rn -- "$0" "$@"
-  fi
-  echo "SKIP: cannot create a network namespace here (unshare -n / -rn not permitted)"
-  exit 77
-fi
-
-# Inside the namespace. Refuse to send anything unless loopback is the only interface.
-if [ "$(ip -o link show | wc -l)" -ne 1 ]; then
-  echo "FAIL: not in a private network namespace (interfaces: $(ip -o link show | wc -l))" >&2
-  exit 1
-fi
-ip link set lo up multicast on || exit 1
-ip route add 224.0.0.0/4 dev lo || exit 1
+. "$SRC/tools/netns_lib.sh"
+netns_enter 77 lcm-logplayer lcm-logger -- "$0" "$@"
 URL='udpm://239.255.76.67:7667?ttl=0'
 
 WORK=$(mktemp -d "${TMPDIR:-/tmp}/fusemapd_netns.XXXXXX")

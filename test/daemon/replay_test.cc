@@ -16,6 +16,7 @@
 #include "fusemap/daemon/map_outputs.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
+#include "testing/room_slam_config.h"
 #include "testing/synthetic_room.h"
 
 namespace fusemap {
@@ -25,20 +26,6 @@ namespace {
 constexpr double kStepM = 0.15;
 constexpr double kStartS = 1700000000.0;
 
-io::SlamConfig TestConfig() {
-  io::SlamConfig config;
-  auto& options = config.map_builder;
-  options.local_slam.use_imu = false;
-  options.local_slam.submaps.num_range_data = 10;
-  options.local_slam.use_online_correlative_scan_matching = false;
-  options.global_slam.optimize_every_n_nodes = 15;
-  auto& constraints = options.global_slam.constraint_builder;
-  constraints.sampling_ratio = 1.0;
-  constraints.max_constraint_distance_m = 3.0;
-  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
-  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
-  return config;
-}
 
 // 1.1 turns around the synthetic room's island: a scan per step, odometry (2 % scale error,
 // 0.3 deg yaw bias per step) twice per step, so loop closure has drift to remove.
@@ -124,7 +111,7 @@ class RecordingPublisher : public Publisher {
 
 TEST(ReplayTest, FileReplayWithOneThreadEqualsOfflineRunnerBitForBit) {
   const std::string log = WriteLog(::testing::TempDir() + "/daemon_replay.lcm");
-  const io::SlamConfig config = TestConfig();
+  const io::SlamConfig config = test_world::RoomSlamConfig();
   const auto expected = OfflineTrajectory(log, config);
   ASSERT_GT(expected.size(), 100u);
 
@@ -183,7 +170,7 @@ TEST(ReplayTest, DirectFeedingWithThreadPoolFinishesEverything) {
   RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
   RecordingPublisher publisher;
   DaemonOptions options;
-  Engine engine(TestConfig(), options, 2, OverflowPolicy::kBlock, &publisher, &quiet);
+  Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher, &quiet);
   engine.Start();
   io::LcmLogReader reader;
   std::string error;

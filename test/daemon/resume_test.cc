@@ -17,6 +17,7 @@
 #include "fusemap/daemon/resume.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/tum_trajectory.h"
+#include "testing/room_slam_config.h"
 #include "testing/synthetic_room.h"
 
 namespace fusemap {
@@ -27,20 +28,6 @@ constexpr double kStepM = 0.15;
 constexpr double kStartS = 1700000000.0;
 constexpr char kYaml[] = "# the test's configuration text\n";
 
-io::SlamConfig TestConfig() {
-  io::SlamConfig config;
-  auto& options = config.map_builder;
-  options.local_slam.use_imu = false;
-  options.local_slam.submaps.num_range_data = 10;
-  options.local_slam.use_online_correlative_scan_matching = false;
-  options.global_slam.optimize_every_n_nodes = 15;
-  auto& constraints = options.global_slam.constraint_builder;
-  constraints.sampling_ratio = 1.0;
-  constraints.max_constraint_distance_m = 3.0;
-  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
-  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
-  return config;
-}
 
 struct Message {
   std::string channel;
@@ -112,7 +99,7 @@ double Distance(const common::Rigid2d& a, const common::Rigid2d& b) {
 
 TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
   const auto log = MakeLog();
-  const io::SlamConfig config = TestConfig();
+  const io::SlamConfig config = test_world::RoomSlamConfig();
   RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
   NullPublisher publisher;
 
@@ -209,7 +196,7 @@ TEST(ResumeTest, CorruptCheckpointFallsBackToPreviousAndOtherVersionIsRefused) {
   std::filesystem::remove_all(dir);
   const auto log = MakeLog();
   common::InlineExecutor executor;
-  pose_graph::MapBuilder2D builder(TestConfig().map_builder, &executor);
+  pose_graph::MapBuilder2D builder(test_world::RoomSlamConfig().map_builder, &executor);
   FileCheckpointer file(CheckpointPath(dir), kYaml);
   std::string error;
   int fed = 0;
@@ -225,7 +212,7 @@ TEST(ResumeTest, CorruptCheckpointFallsBackToPreviousAndOtherVersionIsRefused) {
       }
       sensor::LaserScan scan;
       ASSERT_TRUE(io::DecodeLaserScan(m.data.data(), static_cast<int>(m.data.size()),
-                                      TestConfig().lidar, &scan, &error));
+                                      test_world::RoomSlamConfig().lidar, &scan, &error));
       builder.AddScan(scan);
       ++n;
     }
