@@ -16,6 +16,7 @@
 #include "fusemap/daemon/map_outputs.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
+#include "testing/room_drive_log.h"
 #include "testing/room_slam_config.h"
 #include "testing/synthetic_room.h"
 
@@ -27,35 +28,20 @@ constexpr double kStepM = 0.15;
 constexpr double kStartS = 1700000000.0;
 
 
-// 1.1 turns around the synthetic room's island: a scan per step, odometry (2 % scale error,
-// 0.3 deg yaw bias per step) twice per step, so loop closure has drift to remove.
+// The room drive (testing/room_drive_log.h) as an LCM log, with a malformed LIDAR message after
+// every 20th scan that must not change anything.
 std::string WriteLog(const std::string& path) {
-  const auto walls = test_world::Room();
   io::LcmLogWriter writer;
   std::string error;
   EXPECT_TRUE(writer.Open(path, &error)) << error;
-  std::mt19937 rng(42);
-  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
-  common::Rigid2d odom = test_world::ArcPose(0, kStepM);
-  for (int i = 0; i < num_scans; ++i) {
-    const double stamp_s = kStartS + 0.1 * i;
-    if (i > 0) {
-      const common::Rigid2d delta =
-          test_world::ArcPose(i - 1, kStepM).inverse() * test_world::ArcPose(i, kStepM);
-      const common::Rigid2d half(0.51 * delta.translation(),
-                                 0.5 * delta.angle_rad() + common::DegToRad(0.15));
-      odom = odom * half;
-      const auto mid = io::EncodeOdometry({stamp_s - 0.05, odom});
-      writer.Write("ODOMETRY", io::StampToUtime(stamp_s - 0.05), mid.data(), mid.size());
-      odom = odom * half;
+  int scans = 0;
+  for (const auto& message : test_world::RoomDriveMessages(kStepM, kStartS, 42)) {
+    const int64_t utime = io::StampToUtime(message.stamp_s);
+    writer.Write(message.channel, utime, message.data.data(), message.data.size());
+    if (message.channel == "LIDAR" && scans++ % 20 == 0) {
+      const auto junk = std::vector<uint8_t>(5, 0xab);
+      writer.Write("LIDAR", utime, junk.data(), junk.size());
     }
-    const auto o = io::EncodeOdometry({stamp_s, odom});
-    writer.Write("ODOMETRY", io::StampToUtime(stamp_s), o.data(), o.size());
-    const auto scan = io::EncodeLaserScan(
-        test_world::SimulateScan(walls, test_world::ArcPose(i, kStepM), stamp_s, 0.02, &rng));
-    writer.Write("LIDAR", io::StampToUtime(stamp_s), scan.data(), scan.size());
-    const auto junk = std::vector<uint8_t>(5, 0xab);  // malformed, must not change anything
-    if (i % 20 == 0) writer.Write("LIDAR", io::StampToUtime(stamp_s), junk.data(), junk.size());
   }
   writer.Close();
   return path;

@@ -17,6 +17,7 @@
 #include "fusemap/daemon/resume.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/tum_trajectory.h"
+#include "testing/room_drive_log.h"
 #include "testing/room_slam_config.h"
 #include "testing/synthetic_room.h"
 
@@ -34,28 +35,11 @@ struct Message {
   std::vector<uint8_t> data;
 };
 
-// 1.1 turns around the synthetic room's island with drifting odometry twice per scan, so that
-// loop closures happen after the resume point.
+// The room drive: loop closures happen after the resume point.
 std::vector<Message> MakeLog() {
-  const auto walls = test_world::Room();
-  std::mt19937 rng(7);
   std::vector<Message> log;
-  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
-  common::Rigid2d odom = test_world::ArcPose(0, kStepM);
-  for (int i = 0; i < num_scans; ++i) {
-    const double stamp_s = kStartS + 0.1 * i;
-    if (i > 0) {
-      const common::Rigid2d delta =
-          test_world::ArcPose(i - 1, kStepM).inverse() * test_world::ArcPose(i, kStepM);
-      const common::Rigid2d half(0.51 * delta.translation(),
-                                 0.5 * delta.angle_rad() + common::DegToRad(0.15));
-      odom = odom * half;
-      log.push_back({"ODOMETRY", io::EncodeOdometry({stamp_s - 0.05, odom})});
-      odom = odom * half;
-    }
-    log.push_back({"ODOMETRY", io::EncodeOdometry({stamp_s, odom})});
-    log.push_back({"LIDAR", io::EncodeLaserScan(test_world::SimulateScan(
-                                walls, test_world::ArcPose(i, kStepM), stamp_s, 0.02, &rng))});
+  for (auto& message : test_world::RoomDriveMessages(kStepM, kStartS, 7)) {
+    log.push_back({message.channel, std::move(message.data)});
   }
   return log;
 }
