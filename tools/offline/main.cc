@@ -280,7 +280,7 @@ int Run(const Args& args) {
     std::printf("wrote%s\n", files.c_str());
     std::printf("%s\n", written.cloud_summary.c_str());
   }
-  if (cloud_feed) {
+  if (cloud_feed && rgbd_frames > 0) {  // Laser-only logs: nothing to report.
     const auto& c = cloud_feed->mapper().binder().stats();
     std::printf("cloud_cost: rgbd_frames=%d per_frame_ms_median=%.1f per_frame_ms_p99=%.1f "
                 "cloud_s=%.2f submap_updates=%zu update_ms_max=%.2f final_update_ms=%.2f "
