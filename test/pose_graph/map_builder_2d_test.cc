@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "fusemap/common/math.h"
+#include "testing/room_map_builder_options.h"
 #include "testing/synthetic_room.h"
 
 namespace fusemap {
@@ -26,18 +27,8 @@ constexpr double kStepM = 0.15;
 common::Rigid2d TruePose(int i) { return test_world::ArcPose(i, kStepM); }
 
 MapBuilderOptions2D TestOptions(int optimize_every_n_nodes) {
-  MapBuilderOptions2D options;
-  options.local_slam.use_imu = false;
-  options.local_slam.submaps.num_range_data = 10;
-  // A deliberately weaker local SLAM (Ceres refinement only, no correlative search) so that
-  // it drifts by decimetres over the loop and loop closure has something to remove.
-  options.local_slam.use_online_correlative_scan_matching = false;
+  MapBuilderOptions2D options = test_world::RoomMapBuilderOptions();
   options.global_slam.optimize_every_n_nodes = optimize_every_n_nodes;
-  auto& constraints = options.global_slam.constraint_builder;
-  constraints.sampling_ratio = 1.0;
-  constraints.max_constraint_distance_m = 3.0;
-  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
-  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
   return options;
 }
 

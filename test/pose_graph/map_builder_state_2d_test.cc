@@ -13,6 +13,7 @@
 
 #include "fusemap/common/math.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
+#include "testing/room_map_builder_options.h"
 #include "testing/synthetic_room.h"
 
 namespace fusemap {
@@ -23,18 +24,10 @@ constexpr double kStepM = 0.15;
 
 common::Rigid2d TruePose(int i) { return test_world::ArcPose(i, kStepM); }
 
-// As in map_builder_2d_test: a drifting local SLAM that loop closure has to correct.
 MapBuilderOptions2D TestOptions(double sampling_ratio) {
-  MapBuilderOptions2D options;
-  options.local_slam.use_imu = false;
-  options.local_slam.submaps.num_range_data = 10;
-  options.local_slam.use_online_correlative_scan_matching = false;
+  MapBuilderOptions2D options = test_world::RoomMapBuilderOptions();
   options.global_slam.optimize_every_n_nodes = 10;
-  auto& constraints = options.global_slam.constraint_builder;
-  constraints.sampling_ratio = sampling_ratio;
-  constraints.max_constraint_distance_m = 3.0;
-  constraints.fast_correlative_scan_matcher.linear_search_window_m = 1.0;
-  constraints.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(15.0);
+  options.global_slam.constraint_builder.sampling_ratio = sampling_ratio;
   return options;
 }
 
