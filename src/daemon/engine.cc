@@ -256,9 +256,11 @@ HealthReport Engine::Health() const {
   report.latency = latency_.Summarize();
   report.rss_bytes = ResidentMemoryBytes();
   const auto stats = builder_->pose_graph().stats();
-  report.nodes = stats.nodes;
-  report.submaps = stats.submaps;
-  report.constraints = stats.intra_constraints + stats.loop_closures_found;
+  report.nodes = stats.nodes - stats.trimmed_nodes;
+  report.submaps = stats.submaps - stats.trimmed_submaps;
+  report.constraints = stats.constraints;
+  report.trimmed_nodes = stats.trimmed_nodes;
+  report.trimmed_submaps = stats.trimmed_submaps;
   report.loop_closures = stats.loop_closures_found;
   report.optimizations = stats.optimizations;
   report.checkpoint_failures = checkpoint_failures_;

@@ -58,9 +58,11 @@ std::string FormatHealth(const HealthReport& report) {
     line += buffer;
   }
   std::snprintf(buffer, sizeof(buffer),
-                " latency_p50=%.1fms p99=%.1fms rss=%.0fMB ckpt_fail=%d time_resets=%lld",
+                " latency_p50=%.1fms p99=%.1fms rss=%.0fMB ckpt_fail=%d time_resets=%lld"
+                " trimmed_submaps=%d trimmed_nodes=%d",
                 report.latency.median_ms, report.latency.p99_ms, report.rss_bytes / 1048576.0,
-                report.checkpoint_failures, static_cast<long long>(report.time_resets));
+                report.checkpoint_failures, static_cast<long long>(report.time_resets),
+                report.trimmed_submaps, report.trimmed_nodes);
   return line + buffer;
 }
 

@@ -10,18 +10,22 @@ namespace {
 
 void PutStats(const pose_graph::PoseGraph2D::Stats& s, ByteWriter* out) {
   for (int v : {s.nodes, s.submaps, s.finished_submaps, s.intra_constraints,
-                s.loop_closure_searches, s.loop_closures_found, s.optimizations}) {
+                s.loop_closure_searches, s.loop_closures_found, s.optimizations, s.trimmed_submaps,
+                s.trimmed_nodes}) {
     out->I32(v);
   }
-  for (double v : {s.loop_closure_search_s, s.precomputation_s, s.optimization_s}) out->F64(v);
+  for (double v : {s.loop_closure_search_s, s.precomputation_s, s.optimization_s, s.trimming_s}) {
+    out->F64(v);
+  }
 }
 
 bool GetStats(ByteReader* in, pose_graph::PoseGraph2D::Stats* s) {
   return in->I32(&s->nodes) && in->I32(&s->submaps) && in->I32(&s->finished_submaps) &&
          in->I32(&s->intra_constraints) && in->I32(&s->loop_closure_searches) &&
          in->I32(&s->loop_closures_found) && in->I32(&s->optimizations) &&
+         in->I32(&s->trimmed_submaps) && in->I32(&s->trimmed_nodes) &&
          in->F64(&s->loop_closure_search_s) && in->F64(&s->precomputation_s) &&
-         in->F64(&s->optimization_s);
+         in->F64(&s->optimization_s) && in->F64(&s->trimming_s);
 }
 
 void PutLocal(const mapping::LocalTrajectoryBuilderState2D& local, ByteWriter* out) {
@@ -92,9 +96,14 @@ bool GetLocal(ByteReader* in, mapping::LocalTrajectoryBuilderState2D* local) {
 
 void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool compress_grids,
                            ByteWriter* out) {
-  out->U64(state.submaps.size());
-  for (const auto& submap : state.submaps) EncodeSubmapState(submap, compress_grids, out);
   const pose_graph::PoseGraphState2D& g = state.pose_graph;
+  out->U64(state.submaps.size());
+  for (size_t s = 0; s < state.submaps.size(); ++s) {
+    // Trimmed submaps have no grid to store.
+    const bool has_grid = !g.submaps[s].trimmed;
+    out->U8(has_grid ? 1 : 0);
+    if (has_grid) EncodeSubmapState(state.submaps[s], compress_grids, out);
+  }
   out->U64(g.nodes.size());
   for (const auto& node : g.nodes) {
     out->F64(node.stamp_s);
@@ -106,10 +115,12 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     }
     out->U64(node.inserted_into.size());
     for (int s : node.inserted_into) out->I32(s);
+    out->U8(node.trimmed ? 1 : 0);
   }
   out->U64(g.submaps.size());
   for (const auto& s : g.submaps) {
     out->U8(s.finished ? 1 : 0);
+    out->U8(s.trimmed ? 1 : 0);
     out->U8(s.matcher_ready ? 1 : 0);
     out->I64(s.sampler_pulses);
   }
@@ -134,6 +145,7 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
   }
   out->U8(g.optimization_pending ? 1 : 0);
   out->I32(g.nodes_since_optimization);
+  out->I32(g.finished_submaps_at_last_trim);
   out->U64(g.solve_count);
   PutStats(g.stats, out);
   PutLocal(state.local_slam, out);
@@ -174,17 +186,23 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
       in->Fail("submap " + std::to_string(s) + " finished flags disagree");
       return false;
     }
+    if (g.submaps[s].trimmed && !g.submaps[s].finished) {
+      in->Fail("submap " + std::to_string(s) + " is trimmed but not finished");
+      return false;
+    }
   }
   for (const auto& c : g.constraints) {
-    if (!InRange(c.submap, num_submaps) || !InRange(c.node, num_nodes)) {
-      in->Fail("a constraint names a missing node or submap");
+    if (!InRange(c.submap, num_submaps) || !InRange(c.node, num_nodes) ||
+        g.submaps[c.submap].trimmed || g.nodes[c.node].trimmed) {
+      in->Fail("a constraint names a missing or trimmed node or submap");
       return false;
     }
   }
   for (const auto& search : g.searches_in_flight) {
     if (!InRange(search.submap, num_submaps) || !InRange(search.node, num_nodes) ||
-        !g.submaps[search.submap].finished) {
-      in->Fail("a pending search names a missing node or unfinished submap");
+        !g.submaps[search.submap].finished || g.submaps[search.submap].trimmed ||
+        g.nodes[search.node].trimmed) {
+      in->Fail("a pending search names a missing, trimmed or unfinished node or submap");
       return false;
     }
   }
@@ -193,8 +211,8 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     return false;
   }
   for (int s : state.active_submaps) {
-    if (!InRange(s, num_submaps)) {
-      in->Fail("active submap " + std::to_string(s) + " is missing");
+    if (!InRange(s, num_submaps) || g.submaps[s].trimmed) {
+      in->Fail("active submap " + std::to_string(s) + " is missing or trimmed");
       return false;
     }
   }
@@ -210,13 +228,18 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
 bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state) {
   *state = pose_graph::MapBuilderState2D();
   // Minimum encoded sizes of list elements, for Count's allocation guard.
-  constexpr size_t kSubmapBytes = 24 + 24 + 12 + 2 + 8;
-  constexpr size_t kNodeBytes = 8 + 24 + 8 + 8;
+  constexpr size_t kSubmapBytes = 1;  // a trimmed one
+  constexpr size_t kNodeBytes = 8 + 24 + 8 + 8 + 1;
   size_t n = 0;
   if (!in->Count(kSubmapBytes, &n)) return false;
   state->submaps.resize(n);
-  for (auto& submap : state->submaps) {
-    if (!DecodeSubmapState(in, &submap)) return false;
+  std::vector<bool> has_grid(n, false);
+  for (size_t s = 0; s < n; ++s) {
+    bool present = false;
+    if (!in->Bool(&present)) return false;
+    has_grid[s] = present;
+    state->submaps[s].finished = true;
+    if (present && !DecodeSubmapState(in, &state->submaps[s])) return false;
   }
   pose_graph::PoseGraphState2D& g = state->pose_graph;
   if (!in->Count(kNodeBytes, &n)) return false;
@@ -234,13 +257,22 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     for (int& s : node.inserted_into) {
       if (!in->I32(&s)) return false;
     }
+    if (!in->Bool(&node.trimmed)) return false;
   }
-  if (!in->Count(10, &n)) return false;
+  if (!in->Count(11, &n)) return false;
   g.submaps.resize(n);
-  for (auto& s : g.submaps) {
+  for (size_t s = 0; s < n; ++s) {
+    pose_graph::PoseGraphState2D::Submap& submap = g.submaps[s];
     int64_t pulses = 0;
-    if (!in->Bool(&s.finished) || !in->Bool(&s.matcher_ready) || !in->I64(&pulses)) return false;
-    s.sampler_pulses = static_cast<long>(pulses);
+    if (!in->Bool(&submap.finished) || !in->Bool(&submap.trimmed) ||
+        !in->Bool(&submap.matcher_ready) || !in->I64(&pulses)) {
+      return false;
+    }
+    submap.sampler_pulses = static_cast<long>(pulses);
+    if (s < has_grid.size() && submap.trimmed == has_grid[s]) {
+      in->Fail("submap " + std::to_string(s) + " has a grid if and only if it is not trimmed");
+      return false;
+    }
   }
   for (auto* poses : {&g.T_map_nodes, &g.T_map_submaps}) {
     if (!in->Count(24, &n)) return false;
@@ -267,6 +299,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     }
   }
   if (!in->Bool(&g.optimization_pending) || !in->I32(&g.nodes_since_optimization) ||
+      !in->I32(&g.finished_submaps_at_last_trim) ||
       !in->U64(&g.solve_count) || !GetStats(in, &g.stats) || !GetLocal(in, &state->local_slam) ||
       !in->Count(4, &n)) {
     return false;

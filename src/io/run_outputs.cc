@@ -28,6 +28,7 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
   const auto submaps = run.builder->pose_graph().submaps();
   std::vector<mapping::PlacedGrid> grids;
   for (size_t i = 0; i < submaps.size() && i < snapshot->T_map_submaps.size(); ++i) {
+    if (!submaps[i]) continue;  // trimmed: newer submaps cover its area
     grids.emplace_back(snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
                        &submaps[i]->grid());
   }

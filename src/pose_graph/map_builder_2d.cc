@@ -43,7 +43,12 @@ MapBuilderState2D MapBuilder2D::ExportState() const {
   // Grids are copied outside the pose graph's lock: finished submaps are immutable and the
   // unfinished ones are only written by AddScan, on this thread.
   state.submaps.reserve(submaps.size());
-  for (const auto& submap : submaps) state.submaps.push_back(submap->ExportState());
+  // A trimmed submap keeps its index, finished and with an empty grid.
+  mapping::SubmapState2D trimmed;
+  trimmed.finished = true;
+  for (const auto& submap : submaps) {
+    state.submaps.push_back(submap ? submap->ExportState() : trimmed);
+  }
   for (const auto& active : local_.active_submaps()) {
     const auto it = std::find(submaps.begin(), submaps.end(), active);
     // Every submap local SLAM starts reaches the pose graph with the scan that started it.
@@ -59,8 +64,10 @@ std::unique_ptr<MapBuilder2D> MapBuilder2D::Restore(const MapBuilderOptions2D& o
   auto builder = std::make_unique<MapBuilder2D>(options, executor);
   std::vector<std::shared_ptr<mapping::Submap2D>> submaps;
   submaps.reserve(state.submaps.size());
-  for (const auto& submap : state.submaps) {
-    submaps.push_back(std::make_shared<mapping::Submap2D>(submap));
+  for (size_t s = 0; s < state.submaps.size(); ++s) {
+    submaps.push_back(state.pose_graph.submaps[s].trimmed
+                          ? nullptr
+                          : std::make_shared<mapping::Submap2D>(state.submaps[s]));
   }
   std::vector<std::shared_ptr<mapping::Submap2D>> active;
   for (int index : state.active_submaps) active.push_back(submaps.at(index));

@@ -1,5 +1,6 @@
 #include "fusemap/pose_graph/pose_graph_2d.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "fusemap/pose_graph/sparse_pose_adjustment_2d.h"
@@ -30,7 +31,8 @@ bool PoseGraphOptions2D::IsValid(std::string* error) const {
     *error = "constraint weights must be positive";
     return false;
   }
-  return constraint_builder.IsValid(error) && optimization.IsValid(error);
+  return constraint_builder.IsValid(error) && optimization.IsValid(error) &&
+         overlapping_submaps_trimmer.IsValid(error);
 }
 
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
@@ -45,6 +47,10 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
   reader.Get("local_slam_translation_weight", &options.local_slam_translation_weight);
   reader.Get("local_slam_rotation_weight", &options.local_slam_rotation_weight);
   reader.Get("final_optimization_iterations", &options.final_optimization_iterations);
+  if (reader.Has("overlapping_submaps_trimmer")) {
+    options.overlapping_submaps_trimmer =
+        ParseOverlappingSubmapsTrimmerOptions2D(reader.Child("overlapping_submaps_trimmer"));
+  }
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("optimize_every_n_nodes", error);
   return options;
@@ -81,7 +87,7 @@ int PoseGraph2D::AddNode(
                                             ? common::Rigid2d::Identity()
                                             : T_map_nodes_.back() * nodes_.back().T_local_node.inverse();
     node = static_cast<int>(nodes_.size());
-    nodes_.push_back({stamp_s, T_local_node, filtered_cloud, {}});
+    nodes_.push_back({stamp_s, T_local_node, filtered_cloud, {}, false});
     T_map_nodes_.push_back(T_map_local * T_local_node);
     ++stats_.nodes;
 
@@ -130,6 +136,7 @@ int PoseGraph2D::AddNode(
 void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   const NodeData& node_data = nodes_[node];
   SubmapData& submap_data = submaps_[submap];
+  if (node_data.trimmed) return;
   for (int s : node_data.inserted_into) {
     if (s == submap) return;
   }
@@ -155,7 +162,8 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
     searches_in_flight_.erase(id);
     stats_.loop_closure_search_s += SecondsSince(start);
     ++stats_.loop_closure_searches;
-    if (!constraint) return;
+    // The trimmer may have dropped either end while the search ran.
+    if (!constraint || submaps_[search.submap].trimmed || nodes_[search.node].trimmed) return;
     constraint->submap = search.submap;
     constraint->node = search.node;
     constraints_.push_back(*constraint);
@@ -174,6 +182,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stats_.precomputation_s += SecondsSince(start);
+      if (submaps_[s].trimmed) return;
       submaps_[s].matcher = matcher;
       for (const auto& search : searches) QueueSearchLocked(search);
       if (search_all_nodes) {
@@ -188,24 +197,40 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
 void PoseGraph2D::RunOptimization(int max_iterations) {
   const auto start = std::chrono::steady_clock::now();
   SparsePoseAdjustment2D problem;
-  std::vector<common::Rigid2d> T_local_nodes;
+  // Graph indices of the problem's submaps and nodes: trimmed ones are left out.
+  std::vector<int> submap_ids, node_ids;
+  common::Rigid2d T_local_last_node;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    for (const auto& pose : T_map_submaps_) problem.AddSubmap(pose);
-    for (const auto& pose : T_map_nodes_) problem.AddNode(pose);
-    for (const auto& constraint : constraints_) problem.AddConstraint(constraint);
+    std::vector<int> submap_slot(submaps_.size(), -1), node_slot(nodes_.size(), -1);
+    for (size_t s = 0; s < submaps_.size(); ++s) {
+      if (submaps_[s].trimmed) continue;
+      submap_slot[s] = problem.AddSubmap(T_map_submaps_[s]);
+      submap_ids.push_back(static_cast<int>(s));
+    }
+    for (size_t n = 0; n < nodes_.size(); ++n) {
+      if (nodes_[n].trimmed) continue;
+      node_slot[n] = problem.AddNode(T_map_nodes_[n]);
+      node_ids.push_back(static_cast<int>(n));
+    }
+    for (Constraint2D constraint : constraints_) {
+      constraint.submap = submap_slot[constraint.submap];
+      constraint.node = node_slot[constraint.node];
+      problem.AddConstraint(constraint);
+    }
     for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
+      if (node_slot[i] < 0 || node_slot[i + 1] < 0) continue;
       NodeToNodeConstraint2D c;
-      c.from = static_cast<int>(i);
-      c.to = static_cast<int>(i + 1);
+      c.from = node_slot[i];
+      c.to = node_slot[i + 1];
       c.T_from_to = nodes_[i].T_local_node.inverse() * nodes_[i + 1].T_local_node;
       c.translation_weight = options_.local_slam_translation_weight;
       c.rotation_weight = options_.local_slam_rotation_weight;
       problem.AddNodeToNodeConstraint(c);
     }
-    for (const auto& node : nodes_) T_local_nodes.push_back(node.T_local_node);
+    if (!nodes_.empty()) T_local_last_node = nodes_.back().T_local_node;
   }
-  if (T_local_nodes.empty()) {
+  if (node_ids.empty()) {
     std::lock_guard<std::mutex> lock(mutex_);
     optimization_running_ = false;
     return;
@@ -218,30 +243,111 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
   std::vector<SubmapsMovedCallback> callbacks;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    const size_t num_nodes = problem.T_map_nodes().size();
-    const size_t num_submaps = problem.T_map_submaps().size();
+    // The newest node is never trimmed (its submaps are still active), so the graph ends with
+    // node_ids.back() + 1 nodes as the problem was built.
+    const size_t num_nodes = node_ids.back() + 1;
+    const size_t num_submaps = submap_ids.empty() ? 0 : submap_ids.back() + 1;
     const std::vector<common::Rigid2d> before(T_map_submaps_.begin(),
                                               T_map_submaps_.begin() + num_submaps);
-    for (size_t i = 0; i < num_nodes; ++i) T_map_nodes_[i] = problem.T_map_nodes()[i];
-    for (size_t i = 0; i < num_submaps; ++i) T_map_submaps_[i] = problem.T_map_submaps()[i];
+    for (size_t i = 0; i < node_ids.size(); ++i) T_map_nodes_[node_ids[i]] = problem.T_map_nodes()[i];
+    for (size_t i = 0; i < submap_ids.size(); ++i) {
+      T_map_submaps_[submap_ids[i]] = problem.T_map_submaps()[i];
+    }
     // Work added while solving follows the correction of the last optimised node.
-    const common::Rigid2d T_map_local =
-        T_map_nodes_[num_nodes - 1] * T_local_nodes[num_nodes - 1].inverse();
+    const common::Rigid2d T_map_local = T_map_nodes_[num_nodes - 1] * T_local_last_node.inverse();
     for (size_t i = num_nodes; i < nodes_.size(); ++i) {
       T_map_nodes_[i] = T_map_local * nodes_[i].T_local_node;
     }
     for (size_t i = num_submaps; i < submaps_.size(); ++i) {
       T_map_submaps_[i] = T_map_local * submaps_[i].submap->T_local_submap();
     }
-    moved = MovedSubmaps(before, problem.T_map_submaps());
+    moved = MovedSubmaps(before, std::vector<common::Rigid2d>(
+                                     T_map_submaps_.begin(), T_map_submaps_.begin() + num_submaps));
     ++solve_count_;
     ++stats_.optimizations;
     stats_.optimization_s += SecondsSince(start);
-    optimization_running_ = false;
     callbacks = callbacks_;
   }
   if (!moved.empty()) {
     for (const auto& callback : callbacks) callback(moved);
+  }
+  // Still flagged as running, so no other optimisation builds its problem from a graph that
+  // is being trimmed.
+  MaybeTrim();
+  std::lock_guard<std::mutex> lock(mutex_);
+  optimization_running_ = false;
+}
+
+void PoseGraph2D::MaybeTrim() {
+  const OverlappingSubmapsTrimmerOptions2D& trimmer = options_.overlapping_submaps_trimmer;
+  if (!trimmer.enabled()) return;
+  std::vector<PlacedSubmap2D> placed;
+  std::vector<std::shared_ptr<const mapping::Submap2D>> grids_in_use;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (stats_.finished_submaps - finished_submaps_at_last_trim_ < trimmer.min_added_submaps_count) {
+      return;
+    }
+    finished_submaps_at_last_trim_ = stats_.finished_submaps;
+    for (size_t s = 0; s < submaps_.size(); ++s) {
+      const SubmapData& data = submaps_[s];
+      if (!data.finished || data.trimmed) continue;
+      grids_in_use.push_back(data.submap);
+      placed.push_back({static_cast<int>(s),
+                        T_map_submaps_[s] * data.submap->T_local_submap().inverse(),
+                        &data.submap->grid()});
+    }
+  }
+  // Finished grids are immutable, so coverage is computed without holding the lock.
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<int> trim = FindSubmapsToTrim(placed, trimmer);
+  std::lock_guard<std::mutex> lock(mutex_);
+  TrimLocked(trim);
+  stats_.trimming_s += SecondsSince(start);
+}
+
+void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
+  if (submaps.empty() || nodes_.empty()) return;
+  // Local SLAM may still insert into the newest node's submaps (a just finished one is dropped
+  // from its active pair only on the next insertion), so those stay.
+  const std::vector<int>& in_use = nodes_.back().inserted_into;
+  bool any = false;
+  for (int s : submaps) {
+    SubmapData& data = submaps_[s];
+    if (data.trimmed || std::find(in_use.begin(), in_use.end(), s) != in_use.end()) continue;
+    submap_index_.erase(data.submap.get());
+    data.submap.reset();
+    data.matcher.reset();
+    data.trimmed = true;
+    ++stats_.trimmed_submaps;
+    any = true;
+  }
+  if (!any) return;
+  const auto submap_trimmed = [this](const Constraint2D& c) { return submaps_[c.submap].trimmed; };
+  constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(), submap_trimmed),
+                     constraints_.end());
+  // A node is kept while some remaining submap holds it.
+  std::vector<bool> held(nodes_.size(), false);
+  for (const auto& c : constraints_) {
+    if (c.tag == Constraint2D::kIntraSubmap) held[c.node] = true;
+  }
+  for (size_t n = 0; n < nodes_.size(); ++n) {
+    NodeData& node = nodes_[n];
+    if (node.trimmed || held[n]) continue;
+    node.trimmed = true;
+    sensor::PointCloud2d().swap(node.cloud);
+    std::vector<int>().swap(node.inserted_into);
+    ++stats_.trimmed_nodes;
+  }
+  const auto node_trimmed = [this](const Constraint2D& c) { return nodes_[c.node].trimmed; };
+  constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(), node_trimmed),
+                     constraints_.end());
+  for (auto it = searches_in_flight_.begin(); it != searches_in_flight_.end();) {
+    if (submaps_[it->second.submap].trimmed || nodes_[it->second.node].trimmed) {
+      it = searches_in_flight_.erase(it);
+    } else {
+      ++it;
+    }
   }
 }
 
@@ -297,7 +403,9 @@ int PoseGraph2D::SubmapIndex(const mapping::Submap2D* submap) const {
 
 PoseGraph2D::Stats PoseGraph2D::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return stats_;
+  Stats stats = stats_;
+  stats.constraints = static_cast<int>(constraints_.size());
+  return stats;
 }
 
 }  // namespace pose_graph

@@ -14,11 +14,13 @@ PoseGraphState2D PoseGraph2D::ExportState(
   std::lock_guard<std::mutex> lock(mutex_);
   state.nodes.reserve(nodes_.size());
   for (const auto& node : nodes_) {
-    state.nodes.push_back({node.stamp_s, node.T_local_node, node.cloud, node.inserted_into});
+    state.nodes.push_back(
+        {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
   }
   for (const auto& submap : submaps_) {
     submaps->push_back(submap.submap);
-    state.submaps.push_back({submap.finished, submap.matcher != nullptr, submap.sampler_pulses});
+    state.submaps.push_back(
+        {submap.finished, submap.trimmed, submap.matcher != nullptr, submap.sampler_pulses});
   }
   state.T_map_nodes = T_map_nodes_;
   state.T_map_submaps = T_map_submaps_;
@@ -26,6 +28,7 @@ PoseGraphState2D PoseGraph2D::ExportState(
   for (const auto& [id, search] : searches_in_flight_) state.searches_in_flight.push_back(search);
   state.optimization_pending = optimization_running_;
   state.nodes_since_optimization = nodes_since_optimization_;
+  state.finished_submaps_at_last_trim = finished_submaps_at_last_trim_;
   state.solve_count = solve_count_;
   state.stats = stats_;
   return state;
@@ -42,23 +45,27 @@ void PoseGraph2D::RestoreState(
     assert(state.T_map_nodes.size() == state.nodes.size());
     assert(state.T_map_submaps.size() == state.submaps.size());
     for (const auto& node : state.nodes) {
-      nodes_.push_back({node.stamp_s, node.T_local_node, node.cloud, node.inserted_into});
+      nodes_.push_back(
+          {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
     }
     for (size_t s = 0; s < submaps.size(); ++s) {
       SubmapData data;
       data.submap = submaps[s];
       data.finished = state.submaps[s].finished;
+      data.trimmed = state.submaps[s].trimmed;
+      assert(data.trimmed == (submaps[s] == nullptr));
       data.sampler = FixedRatioSampler(options_.constraint_builder.sampling_ratio);
       // The sampler is deterministic in its pulse count, so replaying the pulses restores it.
       for (long i = 0; i < state.submaps[s].sampler_pulses; ++i) data.sampler.Pulse();
       data.sampler_pulses = state.submaps[s].sampler_pulses;
-      submap_index_[submaps[s].get()] = static_cast<int>(s);
+      if (!data.trimmed) submap_index_[submaps[s].get()] = static_cast<int>(s);
       submaps_.push_back(std::move(data));
     }
     T_map_nodes_ = state.T_map_nodes;
     T_map_submaps_ = state.T_map_submaps;
     constraints_ = state.constraints;
     nodes_since_optimization_ = state.nodes_since_optimization;
+    finished_submaps_at_last_trim_ = state.finished_submaps_at_last_trim;
     solve_count_ = state.solve_count;
     stats_ = state.stats;
     if (options_.optimize_every_n_nodes == 0) return;
@@ -68,7 +75,7 @@ void PoseGraph2D::RestoreState(
       searches_by_submap[search.submap].push_back(search);
     }
     for (size_t s = 0; s < submaps_.size(); ++s) {
-      if (!submaps_[s].finished) continue;
+      if (!submaps_[s].finished || submaps_[s].trimmed) continue;
       // A submap whose precomputation had not finished still owes the search of all nodes.
       tasks.push_back(MakeMatcherTask(static_cast<int>(s), submaps_[s].submap,
                                       !state.submaps[s].matcher_ready,

@@ -19,8 +19,13 @@ namespace {
 
 // A real state: 40 scans of the synthetic room through MapBuilder2D, with finished submaps,
 // loop-closure constraints and odometry in the extrapolator.
-CheckpointContents MakeContents() {
+CheckpointContents MakeContents(bool trim) {
   pose_graph::MapBuilderOptions2D options;
+  if (trim) {
+    // The room is small: each new submap covers the older ones again.
+    options.global_slam.overlapping_submaps_trimmer.fresh_submaps_count = 1;
+    options.global_slam.overlapping_submaps_trimmer.min_added_submaps_count = 1;
+  }
   options.local_slam.use_imu = false;
   options.local_slam.submaps.num_range_data = 5;
   options.global_slam.optimize_every_n_nodes = 10;
@@ -40,7 +45,7 @@ CheckpointContents MakeContents() {
 }
 
 const CheckpointContents& Contents() {
-  static const CheckpointContents contents = MakeContents();
+  static const CheckpointContents contents = MakeContents(false);
   return contents;
 }
 
@@ -99,6 +104,27 @@ TEST(CheckpointTest, RoundTripIsExact) {
   }
 }
 
+TEST(CheckpointTest, TrimmedSubmapsAndNodesRoundTrip) {
+  const CheckpointContents contents = MakeContents(true);
+  const pose_graph::PoseGraphState2D& graph = contents.state.pose_graph;
+  ASSERT_GT(graph.stats.trimmed_submaps, 0);
+  ASSERT_GT(graph.stats.trimmed_nodes, 0);
+  const std::string bytes = EncodeCheckpoint(contents, true);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  for (size_t s = 0; s < graph.submaps.size(); ++s) {
+    EXPECT_EQ(read.state.pose_graph.submaps[s].trimmed, graph.submaps[s].trimmed) << s;
+    EXPECT_EQ(read.state.submaps[s].cells.empty(), graph.submaps[s].trimmed) << s;
+  }
+  for (size_t n = 0; n < graph.nodes.size(); ++n) {
+    EXPECT_EQ(read.state.pose_graph.nodes[n].trimmed, graph.nodes[n].trimmed) << n;
+  }
+  EXPECT_EQ(EncodeCheckpoint(read, true), bytes);
+  // Smaller than the untrimmed state of the same run: the trimmed grids are not stored.
+  EXPECT_LT(bytes.size(), EncodeCheckpoint(Contents(), true).size());
+}
+
 TEST(CheckpointTest, CompressionShrinksTheGrids) {
   const size_t packed = EncodeCheckpoint(Contents(), true).size();
   const size_t raw = EncodeCheckpoint(Contents(), false).size();
@@ -153,9 +179,11 @@ TEST(CheckpointTest, BadMagicAndOtherVersionsAreNamed) {
   EXPECT_FALSE(DecodeCheckpoint(bad_magic, "ckpt", &read, &error));
   EXPECT_NE(error.find("bad magic"), std::string::npos) << error;
   std::string other_version = bytes;
-  other_version[12] = 2;
+  other_version[12] = static_cast<char>(kCheckpointFormatVersion + 1);
   EXPECT_FALSE(DecodeCheckpoint(other_version, "ckpt", &read, &error));
-  EXPECT_NE(error.find("format version 2"), std::string::npos) << error;
+  EXPECT_NE(error.find("format version " + std::to_string(kCheckpointFormatVersion + 1)),
+            std::string::npos)
+      << error;
 }
 
 TEST(CheckpointTest, AtomicReplaceKeepsExactlyOnePrevious) {

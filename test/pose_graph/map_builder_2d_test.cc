@@ -32,6 +32,15 @@ MapBuilderOptions2D TestOptions(int optimize_every_n_nodes) {
   return options;
 }
 
+// Every submap sees most of the small room, so each new one covers its predecessors again.
+OverlappingSubmapsTrimmerOptions2D Trimmer() {
+  OverlappingSubmapsTrimmerOptions2D trimmer;
+  trimmer.fresh_submaps_count = 1;
+  trimmer.min_covered_area_m2 = 0.5;
+  trimmer.min_added_submaps_count = 2;
+  return trimmer;
+}
+
 struct LoopRun {
   PoseGraph2D::Stats stats;
   double end_error_m = 0.0;
@@ -39,11 +48,13 @@ struct LoopRun {
   int moved_submaps = 0;
 };
 
-// 1.1 turns around the island, so the end revisits the start; odometry with 2 % scale error
+// `turns` around the island (1.1: the end revisits the start); odometry with 2 % scale error
 // and 0.3 deg yaw bias per step, ranges with +-2 cm noise.
-LoopRun DriveLoop(int optimize_every_n_nodes, common::Executor* executor) {
+LoopRun DriveLoop(int optimize_every_n_nodes, common::Executor* executor, double turns = 1.1,
+                  const OverlappingSubmapsTrimmerOptions2D& trimmer = {}) {
   const std::vector<Segment> walls = Room();
-  const MapBuilderOptions2D options = TestOptions(optimize_every_n_nodes);
+  MapBuilderOptions2D options = TestOptions(optimize_every_n_nodes);
+  options.global_slam.overlapping_submaps_trimmer = trimmer;
   std::string error;
   EXPECT_TRUE(options.IsValid(&error)) << error;
   MapBuilder2D builder(options, executor);
@@ -53,7 +64,7 @@ LoopRun DriveLoop(int optimize_every_n_nodes, common::Executor* executor) {
     run.moved_submaps += static_cast<int>(moves.size());
   });
   std::mt19937 rng(42);
-  const int num_scans = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_scans = static_cast<int>(turns * 2.0 * common::kPi * kArcRadiusM / kStepM);
   common::Rigid2d odom = TruePose(0);
   for (int i = 0; i < num_scans; ++i) {
     if (i > 0) {
@@ -101,6 +112,26 @@ TEST(MapBuilder2DTest, LoopClosureBeatsLocalSlamAlone) {
   EXPECT_GT(local_only.end_error_m, 0.2);
   EXPECT_LT(global.end_error_m, 0.5 * local_only.end_error_m);
   EXPECT_LT(global.end_error_m, 0.08);
+}
+
+TEST(MapBuilder2DTest, TrimmerKeepsTheGraphSmallOverRepeatedLaps) {
+  common::InlineExecutor executor;
+  const LoopRun kept = DriveLoop(10, &executor, 2.1);
+  const LoopRun trimmed = DriveLoop(10, &executor, 2.1, Trimmer());
+  const int live_submaps = trimmed.stats.submaps - trimmed.stats.trimmed_submaps;
+  std::printf("2.1 laps: %d submaps and %d constraints kept, %d submaps (%d trimmed, %d nodes "
+              "trimmed) and %d constraints with the trimmer; end error %.4f m vs %.4f m\n",
+              kept.stats.submaps, kept.stats.constraints, trimmed.stats.submaps,
+              trimmed.stats.trimmed_submaps, trimmed.stats.trimmed_nodes,
+              trimmed.stats.constraints, trimmed.end_error_m, kept.end_error_m);
+  EXPECT_EQ(kept.stats.trimmed_submaps, 0);
+  EXPECT_EQ(kept.stats.trimmed_nodes, 0);
+  EXPECT_GT(trimmed.stats.trimmed_nodes, 0);
+  EXPECT_EQ(trimmed.stats.submaps, kept.stats.submaps);
+  EXPECT_LE(live_submaps, kept.stats.submaps / 3);
+  EXPECT_LT(trimmed.stats.constraints, kept.stats.constraints / 2);
+  // Trimmed nodes keep their last pose, so the whole trajectory is still there and right.
+  EXPECT_LT(trimmed.end_error_m, 0.08);
 }
 
 TEST(MapBuilder2DTest, ThreadPoolRunFindsLoopClosures) {

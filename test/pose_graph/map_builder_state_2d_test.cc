@@ -36,12 +36,12 @@ struct Input {
   sensor::LaserScan scan;
 };
 
-// 1.1 turns around the island (the end revisits the start), biased odometry, noisy ranges.
-std::vector<Input> LoopInput() {
+// `turns` around the island (1.1: the end revisits the start), biased odometry, noisy ranges.
+std::vector<Input> LoopInput(double turns = 1.1) {
   const auto walls = test_world::Room();
   std::mt19937 rng(7);
   const int num_scans =
-      static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
+      static_cast<int>(turns * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
   std::vector<Input> input;
   common::Rigid2d odom = TruePose(0);
   for (int i = 0; i < num_scans; ++i) {
@@ -80,6 +80,20 @@ void ExpectSameSubmaps(const MapBuilderState2D& a, const MapBuilderState2D& b) {
   EXPECT_EQ(a.active_submaps, b.active_submaps);
 }
 
+// Restore is exact and the inline executor deterministic, so the runs agree to rounding.
+void ExpectSamePoses(const std::vector<MapBuilder2D::TimedPose2d>& expected,
+                     const std::vector<MapBuilder2D::TimedPose2d>& actual) {
+  ASSERT_EQ(actual.size(), expected.size());
+  for (size_t i = 0; i < actual.size(); ++i) {
+    EXPECT_EQ(actual[i].stamp_s, expected[i].stamp_s);
+    EXPECT_NEAR(actual[i].pose.x(), expected[i].pose.x(), 1e-9) << "node " << i;
+    EXPECT_NEAR(actual[i].pose.y(), expected[i].pose.y(), 1e-9) << "node " << i;
+    EXPECT_NEAR(common::NormalizeAngle(actual[i].pose.angle_rad() - expected[i].pose.angle_rad()),
+                0.0, 1e-9)
+        << "node " << i;
+  }
+}
+
 TEST(MapBuilderState2DTest, RestoredBuilderContinuesExactlyLikeTheOriginal) {
   const std::vector<Input> input = LoopInput();
   const size_t split = input.size() / 2;
@@ -107,22 +121,44 @@ TEST(MapBuilderState2DTest, RestoredBuilderContinuesExactlyLikeTheOriginal) {
             state.pose_graph.stats.loop_closures_found);
   original.Finish();
   restored->Finish();
-  const auto expected = original.NodePoses();
-  const auto actual = restored->NodePoses();
-  ASSERT_EQ(actual.size(), expected.size());
-  ASSERT_EQ(actual.size(), input.size());
-  // Restore is exact and the inline executor deterministic, so the runs agree to rounding.
-  for (size_t i = 0; i < actual.size(); ++i) {
-    EXPECT_EQ(actual[i].stamp_s, expected[i].stamp_s);
-    EXPECT_NEAR(actual[i].pose.x(), expected[i].pose.x(), 1e-9) << "node " << i;
-    EXPECT_NEAR(actual[i].pose.y(), expected[i].pose.y(), 1e-9) << "node " << i;
-    EXPECT_NEAR(common::NormalizeAngle(actual[i].pose.angle_rad() - expected[i].pose.angle_rad()),
-                0.0, 1e-9)
-        << "node " << i;
-  }
+  ASSERT_EQ(restored->NodePoses().size(), input.size());
+  ExpectSamePoses(original.NodePoses(), restored->NodePoses());
   ExpectSameSubmaps(original.ExportState(), restored->ExportState());
   EXPECT_EQ(original.pose_graph().stats().loop_closure_searches,
             restored->pose_graph().stats().loop_closure_searches);
+}
+
+TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
+  const std::vector<Input> input = LoopInput(2.2);
+  const size_t split = input.size() * 2 / 3;
+  common::InlineExecutor executor;
+  MapBuilderOptions2D options = TestOptions(0.3);
+  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
+  trimmer.fresh_submaps_count = 1;
+  trimmer.min_covered_area_m2 = 0.5;
+  trimmer.min_added_submaps_count = 2;
+  MapBuilder2D original(options, &executor);
+  Feed(input, 0, split, &original);
+  const MapBuilderState2D state = original.ExportState();
+  ASSERT_GT(state.pose_graph.stats.trimmed_submaps, 0);
+  ASSERT_GT(state.pose_graph.stats.trimmed_nodes, 0);
+
+  auto restored = MapBuilder2D::Restore(options, &executor, state);
+  const MapBuilderState2D again = restored->ExportState();
+  ExpectSameSubmaps(state, again);
+  for (size_t s = 0; s < state.submaps.size(); ++s) {
+    EXPECT_EQ(again.pose_graph.submaps[s].trimmed, state.pose_graph.submaps[s].trimmed) << s;
+    EXPECT_EQ(restored->pose_graph().submaps()[s] == nullptr, state.pose_graph.submaps[s].trimmed);
+  }
+  Feed(input, split, input.size(), &original);
+  Feed(input, split, input.size(), restored.get());
+  original.Finish();
+  restored->Finish();
+  // Trimming goes on after the restore, the same way in both.
+  EXPECT_GT(restored->pose_graph().stats().trimmed_submaps, state.pose_graph.stats.trimmed_submaps);
+  EXPECT_EQ(restored->pose_graph().stats().trimmed_nodes,
+            original.pose_graph().stats().trimmed_nodes);
+  ExpectSamePoses(original.NodePoses(), restored->NodePoses());
 }
 
 // Holds tasks until RunAll(), so a test can export while work is deterministically in flight.

@@ -57,9 +57,12 @@ struct HealthReport {
   std::vector<Channel> channels;
   LatencyWindow::Summary latency;
   int64_t rss_bytes = 0;
+  // In the graph now: trimming (lifelong mapping) removes what newer submaps cover again.
   int nodes = 0;
   int submaps = 0;
   int constraints = 0;
+  int trimmed_nodes = 0;
+  int trimmed_submaps = 0;
   int loop_closures = 0;
   int optimizations = 0;
   // Checkpoints that could not be written, and time resets of the input (see Intake).

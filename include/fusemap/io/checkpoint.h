@@ -18,7 +18,7 @@ const char* FusemapVersion();
 //                      u32 crc32 of the preceding 32 header bytes
 //   payload: fusemap version string, options YAML text, MapBuilderState2D
 //            (see map_builder_state_codec.h; grids optionally zlib-compressed).
-constexpr uint32_t kCheckpointFormatVersion = 1;
+constexpr uint32_t kCheckpointFormatVersion = 2;
 
 struct CheckpointContents {
   std::string fusemap_version = FusemapVersion();

@@ -14,6 +14,7 @@
 #include "fusemap/pose_graph/constraint_builder_2d.h"
 #include "fusemap/pose_graph/moved_submaps.h"
 #include "fusemap/pose_graph/optimization_options.h"
+#include "fusemap/pose_graph/overlapping_submaps_trimmer_2d.h"
 #include "fusemap/pose_graph/pose_graph_snapshot.h"
 
 namespace fusemap {
@@ -31,6 +32,7 @@ struct PoseGraphOptions2D {
   double local_slam_translation_weight = 1e5;
   double local_slam_rotation_weight = 1e5;
   int final_optimization_iterations = 200;
+  OverlappingSubmapsTrimmerOptions2D overlapping_submaps_trimmer;  // off by default
 
   PoseGraphOptions2D();
   bool IsValid(std::string* error) const;
@@ -38,7 +40,7 @@ struct PoseGraphOptions2D {
 
 // Keys: optimize_every_n_nodes, constraint_builder, optimization, matcher_translation_weight,
 // matcher_rotation_weight, local_slam_translation_weight, local_slam_rotation_weight,
-// final_optimization_iterations.
+// final_optimization_iterations, overlapping_submaps_trimmer.
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader);
 
 // A loop-closure search queued but not yet finished: node against submap, from the estimate.
@@ -54,7 +56,9 @@ struct PoseGraphState2D;
 // loop closures against finished submaps with branch-and-bound, and periodically re-solves all
 // poses with sparse pose adjustment. Searches and optimisations run as tasks on the given
 // executor; with an InlineExecutor every call completes synchronously and runs are
-// reproducible. All public methods are thread-safe.
+// reproducible. With the overlapping submaps trimmer on, submaps and nodes may be trimmed after
+// an optimisation: they keep their index and last pose, but their data is released and they
+// take no further part. All public methods are thread-safe.
 class PoseGraph2D {
  public:
   struct Stats {
@@ -65,9 +69,13 @@ class PoseGraph2D {
     int loop_closure_searches = 0;
     int loop_closures_found = 0;
     int optimizations = 0;
+    int trimmed_submaps = 0;
+    int trimmed_nodes = 0;
+    int constraints = 0;  // node-in-submap constraints in the graph now (not checkpointed)
     double loop_closure_search_s = 0.0;
     double precomputation_s = 0.0;
     double optimization_s = 0.0;
+    double trimming_s = 0.0;
   };
   using SubmapsMovedCallback = std::function<void(const std::vector<SubmapMove>&)>;
 
@@ -90,6 +98,7 @@ class PoseGraph2D {
 
   // Current global estimate: T_map_local applied to local poses of nodes not yet optimised.
   std::shared_ptr<const PoseGraphSnapshot> Snapshot() const;
+  // By index; null for trimmed submaps.
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
   std::vector<double> node_stamps_s() const;
   common::Rigid2d T_map_local() const;
@@ -99,11 +108,12 @@ class PoseGraph2D {
 
   // A consistent copy of the graph, taken under the lock without waiting for background
   // work: searches, precomputations and an optimisation still running are recorded and redone
-  // by RestoreState(). `submaps` receives the submaps by index (their contents are not
-  // copied here; unfinished ones are still written by local SLAM).
+  // by RestoreState(). `submaps` receives the submaps by index, null for trimmed ones (their
+  // contents are not copied here; unfinished ones are still written by local SLAM).
   PoseGraphState2D ExportState(
       std::vector<std::shared_ptr<const mapping::Submap2D>>* submaps) const;
-  // Only on a graph without nodes. `submaps` are the restored submaps by index. Finished
+  // Only on a graph without nodes. `submaps` are the restored submaps by index (null where
+  // trimmed). Finished
   // submaps get their precomputation grids rebuilt on the executor; until that finishes, new
   // nodes are not searched against them.
   void RestoreState(const PoseGraphState2D& state,
@@ -115,11 +125,13 @@ class PoseGraph2D {
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;
     std::vector<int> inserted_into;
+    bool trimmed = false;  // cloud and inserted_into released
   };
   struct SubmapData {
     std::shared_ptr<const mapping::Submap2D> submap;
     std::shared_ptr<const LoopClosureMatcher2D> matcher;  // once finished and precomputed
     bool finished = false;
+    bool trimmed = false;  // submap and matcher released
     FixedRatioSampler sampler{0.0};
     long sampler_pulses = 0;  // lets a restored sampler be replayed to the same state
   };
@@ -135,6 +147,10 @@ class PoseGraph2D {
                                         bool search_all_nodes,
                                         std::vector<PendingSearch2D> searches);
   void RunOptimization(int max_iterations);
+  // Runs the overlapping submaps trimmer if enough submaps finished since it last ran.
+  void MaybeTrim();
+  // Drops `submaps`, their constraints, and the nodes left in no remaining submap.
+  void TrimLocked(const std::vector<int>& submaps);
 
   const PoseGraphOptions2D options_;
   common::Executor* const executor_;
@@ -147,6 +163,7 @@ class PoseGraph2D {
   std::vector<common::Rigid2d> T_map_submaps_;  // guarded by mutex_
   std::vector<Constraint2D> constraints_;       // guarded by mutex_
   int nodes_since_optimization_ = 0;            // guarded by mutex_
+  int finished_submaps_at_last_trim_ = 0;       // guarded by mutex_
   bool optimization_running_ = false;           // guarded by mutex_
   std::uint64_t solve_count_ = 0;               // guarded by mutex_
   Stats stats_;                                 // guarded by mutex_
@@ -166,9 +183,11 @@ struct PoseGraphState2D {
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;
     std::vector<int> inserted_into;
+    bool trimmed = false;
   };
   struct Submap {
     bool finished = false;
+    bool trimmed = false;  // its grid is gone (MapBuilderState2D holds an empty one)
     bool matcher_ready = false;  // precomputed, and the searches of all nodes were queued
     long sampler_pulses = 0;
   };
@@ -180,6 +199,7 @@ struct PoseGraphState2D {
   std::vector<PendingSearch2D> searches_in_flight;
   bool optimization_pending = false;
   int nodes_since_optimization = 0;
+  int finished_submaps_at_last_trim = 0;
   std::uint64_t solve_count = 0;
   PoseGraph2D::Stats stats;
 };

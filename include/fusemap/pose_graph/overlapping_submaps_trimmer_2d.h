@@ -1,0 +1,53 @@
+#ifndef FUSEMAP_POSE_GRAPH_OVERLAPPING_SUBMAPS_TRIMMER_2D_H_
+#define FUSEMAP_POSE_GRAPH_OVERLAPPING_SUBMAPS_TRIMMER_2D_H_
+
+#include <string>
+#include <vector>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/probability_grid.h"
+
+namespace fusemap {
+namespace pose_graph {
+
+// Lifelong mapping (Cartographer's overlapping submaps trimmer): a robot that keeps driving
+// through a mapped building adds submaps forever. Old submaps whose area newer ones cover again
+// are dropped, with the nodes that lived only in them, so memory and optimisation time follow
+// the size of the building, not the length of the run.
+struct OverlappingSubmapsTrimmerOptions2D {
+  static constexpr int kMaxFreshSubmaps = 4;
+  // Per map cell, the newest this many finished submaps that know it are kept; 0 disables
+  // trimming.
+  int fresh_submaps_count = 0;
+  // A finished submap survives while it is among the fresh ones on at least this area.
+  double min_covered_area_m2 = 2.0;
+  // Trimming runs after an optimisation once this many submaps have finished since it last ran.
+  int min_added_submaps_count = 5;
+
+  bool enabled() const { return fresh_submaps_count > 0; }
+  bool IsValid(std::string* error) const;
+};
+
+// Keys: fresh_submaps_count, min_covered_area_m2, min_added_submaps_count.
+OverlappingSubmapsTrimmerOptions2D ParseOverlappingSubmapsTrimmerOptions2D(
+    common::ConfigReader& reader);
+
+// A finished submap as the trimmer sees it: its grid placed in the map frame.
+struct PlacedSubmap2D {
+  int submap = 0;  // pose-graph index; a larger index is a newer submap
+  common::Rigid2d T_map_grid;
+  const mapping::ProbabilityGrid* grid = nullptr;
+};
+
+// The submaps to drop, in increasing index order. Known cells of every grid are binned into
+// map cells of the first grid's resolution; each map cell keeps its fresh_submaps_count newest
+// submaps, and a submap kept on less than min_covered_area_m2 is returned. `submaps` must be
+// sorted by increasing index and `options` enabled and valid (asserted).
+std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
+                                   const OverlappingSubmapsTrimmerOptions2D& options);
+
+}  // namespace pose_graph
+}  // namespace fusemap
+
+#endif  // FUSEMAP_POSE_GRAPH_OVERLAPPING_SUBMAPS_TRIMMER_2D_H_
