@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cloud_feed.h"
+#include "fusemap/common/math.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/trajectory.h"
@@ -21,7 +22,9 @@
 #include "fusemap/io/rgbd_conversions.h"
 #include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
+#include "fusemap/io/tum_trajectory.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
+#include "fusemap/pose_graph/odometry_calibration.h"
 
 namespace fusemap {
 namespace {
@@ -47,6 +50,10 @@ constexpr char kUsage[] =
     "  --relations FILE    also print the Kuemmerle et al. (2009) relation error of\n"
     "                      DIR/trajectory.tum against FILE (as fusemap_eval relations)\n"
     "  --relations-time-offset S  seconds subtracted from the relation stamps\n"
+    "  --calibrate-odometry  fit the wheel odometry's systematic errors (distance scale,\n"
+    "                      rotation scale, heading drift per metre) to the optimised node-to-node\n"
+    "                      motion and densify DIR/trajectory.tum with the corrected odometry;\n"
+    "                      falls back to the raw odometry when the fit is not determined\n"
     "  --help              this text\n"
     "\n"
     "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n";
@@ -59,6 +66,7 @@ struct Args {
   bool quiet = false;
   std::string relations;
   double relations_time_offset_s = 0.0;
+  bool calibrate_odometry = false;
 };
 
 bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
@@ -93,6 +101,8 @@ bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
         *error = "--relations-time-offset takes a number of seconds";
         return false;
       }
+    } else if (a == "--calibrate-odometry") {
+      args->calibrate_odometry = true;
     } else if (a == "--quiet") {
       args->quiet = true;
     } else if (a == "--threads") {
@@ -251,6 +261,34 @@ int Run(const Args& args) {
     return 1;
   }
   const std::string out = args.out + "/";
+  // The trajectory that is written and scored: node poses densified with the odometry,
+  // optionally corrected for its systematic errors first.
+  const auto nodes = builder.NodePoses();
+  pose_graph::OdometryCalibration calibration;
+  std::string calibration_note;
+  if (args.calibrate_odometry) {
+    std::string reason;
+    if (pose_graph::FitOdometryCalibration(nodes, odometry,
+                                           pose_graph::OdometryCalibrationOptions(), &calibration,
+                                           &reason)) {
+      char line[160];
+      std::snprintf(line, sizeof(line),
+                    "odometry_calibration: translation_scale=%.4f rotation_scale=%.4f "
+                    "heading_drift_deg_per_m=%.3f",
+                    calibration.translation_scale, calibration.rotation_scale,
+                    common::RadToDeg(calibration.heading_drift_rad_per_m));
+      calibration_note = line;
+    } else {
+      calibration_note = "odometry_calibration: none (" + reason + ")";
+    }
+  }
+  const auto dense = pose_graph::DensifyWithOdometry(
+      nodes, pose_graph::ApplyOdometryCalibration(calibration, odometry));
+  if (!calibration.IsIdentity() &&
+      !io::WriteTumTrajectoryFile(out + "trajectory.tum", io::ToTrajectory(dense), &error)) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 1;
+  }
   const auto local = builder.local_slam().stats();
   const auto global = builder.pose_graph().stats();
   struct rusage usage;
@@ -261,10 +299,11 @@ int Run(const Args& args) {
               local.inserted, local.too_few_returns, local.out_of_order);
   std::printf(
       "global_slam: nodes=%d submaps=%d loop_closure_searches=%d loop_closures_accepted=%d "
-      "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f\n",
+      "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f "
+      "trimmed_submaps=%d trimmed_nodes=%d\n",
       global.nodes, global.submaps, global.loop_closure_searches, global.loop_closures_found,
       global.optimizations, global.loop_closure_search_s, global.precomputation_s,
-      global.optimization_s);
+      global.optimization_s, global.trimmed_submaps, global.trimmed_nodes);
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
@@ -295,6 +334,7 @@ int Run(const Args& args) {
                 cloud_feed->final_update_ms(), cloud_feed->final_update_regions(),
                 cloud_feed->final_update_points(), static_cast<long long>(c.rebuilt_points_total));
   }
+  if (!calibration_note.empty()) std::printf("%s\n", calibration_note.c_str());
   if (!args.relations.empty()) {
     std::vector<eval::Relation> relations;
     if (!io::ReadRelationsFile(args.relations, args.relations_time_offset_s, &relations, &error)) {
@@ -302,7 +342,7 @@ int Run(const Args& args) {
       return 1;
     }
     const eval::RelationError r = eval::EvaluateRelations(
-        io::ToTrajectory(pose_graph::DensifyWithOdometry(builder.NodePoses(), odometry)), relations);
+        io::ToTrajectory(dense), relations);
     std::printf("relations: used=%d skipped=%d trans_mean_m=%.4f trans_std_m=%.4f "
                 "rot_mean_deg=%.3f rot_std_deg=%.3f\n",
                 r.count_used, r.count_skipped, r.trans_m.mean, r.trans_m.std, r.rot_deg.mean,
