@@ -22,6 +22,7 @@ bool DaemonOptions::IsValid(std::string* error) const {
   if (!(bad_message_log_interval_s >= 0.0)) return fail("bad_message_log_interval_s must be >= 0");
   if (!(checkpoint_period_s >= 0.0)) return fail("checkpoint_period_s must be >= 0");
   if (!(time_reset_threshold_s >= 0.0)) return fail("time_reset_threshold_s must be >= 0");
+  if (!(release_memory_period_s >= 0.0)) return fail("release_memory_period_s must be >= 0");
   return true;
 }
 
@@ -40,6 +41,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("bad_message_log_interval_s", &options.bad_message_log_interval_s);
   reader.Get("checkpoint_period_s", &options.checkpoint_period_s);
   reader.Get("time_reset_threshold_s", &options.time_reset_threshold_s);
+  reader.Get("release_memory_period_s", &options.release_memory_period_s);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("daemon", error);
   return options;

@@ -218,10 +218,14 @@ void Engine::RunPublisher() {
   using Clock = std::chrono::steady_clock;
   const auto submap_period = Period(options_.submap_list_rate_hz);
   const auto health_period = Period(options_.health_rate_hz);
+  const bool release_memory = options_.release_memory_period_s > 0.0;
+  const auto release_period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(release_memory ? options_.release_memory_period_s : 1.0));
   auto next_submaps = Clock::now() + submap_period;
   auto next_health = Clock::now() + health_period;
+  auto next_release = release_memory ? Clock::now() + release_period : Clock::time_point::max();
   while (true) {
-    auto event = outputs_.PopUntil(std::min(next_submaps, next_health));
+    auto event = outputs_.PopUntil(std::min({next_submaps, next_health, next_release}));
     if (event) {
       if (event->kind == OutputEvent::Kind::kPose) {
         publisher_->PublishPose(event->stamp_s, event->pose);
@@ -242,6 +246,10 @@ void Engine::RunPublisher() {
     if (now >= next_health) {
       publisher_->PublishHealth(last_stamp_s_, Health());
       next_health = now + health_period;
+    }
+    if (now >= next_release) {
+      ReleaseFreeMemory();
+      next_release = now + release_period;
     }
   }
   PublishSubmapsAndLoops(last_stamp_s_);

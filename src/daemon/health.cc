@@ -1,6 +1,9 @@
 #include "fusemap/daemon/health.h"
 
 #include <unistd.h>
+#ifdef __GLIBC__
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cstdio>
@@ -36,6 +39,12 @@ double Percentile(std::vector<double> values, double q) {
       std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
   std::nth_element(values.begin(), values.begin() + i, values.end());
   return values[i];
+}
+
+void ReleaseFreeMemory() {
+#ifdef __GLIBC__
+  malloc_trim(0);
+#endif
 }
 
 int64_t ResidentMemoryBytes() {

@@ -33,6 +33,10 @@ struct DaemonOptions {
   // A laser stamp this much before the previous one is a time reset (looping log player,
   // clock set back): a new time base instead of a drop (see Intake). 0 = never.
   double time_reset_threshold_s = 5.0;
+  // Seconds between handing freed heap pages back to the system. glibc keeps what trimmed
+  // submaps and checkpoint buffers released, spread over its per-thread arenas, so without
+  // this the resident size creeps up over hours although the live heap is flat. 0 = never.
+  double release_memory_period_s = 10.0;
 
   bool IsValid(std::string* error) const;
 };

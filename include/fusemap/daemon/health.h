@@ -44,6 +44,9 @@ double Percentile(std::vector<double> values, double q);
 // Resident set size of this process from /proc/self/statm, or 0 where that is unavailable.
 int64_t ResidentMemoryBytes();
 
+// Returns free heap pages to the system (glibc's malloc_trim; a no-op elsewhere).
+void ReleaseFreeMemory();
+
 // One health report: what fusemap_lcm::health_t carries, as plain values.
 struct HealthReport {
   double uptime_s = 0.0;
