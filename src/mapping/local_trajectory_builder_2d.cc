@@ -26,6 +26,7 @@ bool LocalTrajectoryBuilderOptions2D::IsValid(std::string* error) const {
   }
   return range_gate.IsValid(error) && adaptive_voxel_filter.IsValid(error) &&
          loop_closure_adaptive_voxel_filter.IsValid(error) &&
+         initial_branch_and_bound_match.IsValid(error) &&
          real_time_correlative_scan_matcher.IsValid(error) && ceres_scan_matcher.IsValid(error) &&
          motion_filter.IsValid(error) && submaps.IsValid(error);
 }
@@ -50,6 +51,8 @@ LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::Con
         reader.Child("loop_closure_adaptive_voxel_filter"));
   }
   reader.Get("min_num_returns", &options.min_num_returns);
+  options.initial_branch_and_bound_match =
+      ParseInitialMatchOptions2D(reader.Child("initial_branch_and_bound_match"));
   reader.Get("use_online_correlative_scan_matching", &options.use_online_correlative_scan_matching);
   options.real_time_correlative_scan_matcher = ParseRealTimeCorrelativeScanMatcherOptions2D(
       reader.Child("real_time_correlative_scan_matcher"));
@@ -68,6 +71,7 @@ LocalTrajectoryBuilder2D::LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderO
     : options_(options),
       active_submaps_(options.submaps),
       motion_filter_(options.motion_filter),
+      initial_matcher_(options.initial_branch_and_bound_match),
       real_time_matcher_(options.real_time_correlative_scan_matcher),
       ceres_matcher_(options.ceres_scan_matcher),
       extrapolator_(options.pose_queue_duration_s) {}
@@ -116,13 +120,23 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
   if (submaps.empty()) return predicted;
   // The older submap holds more data, so it is the better reference (Cartographer does the same).
   const ProbabilityGrid& grid = submaps.front()->grid();
-  common::Rigid2d initial = predicted;
-  if (options_.use_online_correlative_scan_matching) {
-    *score = real_time_matcher_.Match(predicted, cloud, grid, &initial);
+  // The fine matchers' priors pull towards `prior`. A branch-and-bound answer replaces a
+  // prediction it found to be wrong; it is only good to a search cell, so Ceres is then held
+  // to the fine correlative answer instead.
+  common::Rigid2d prior = predicted;
+  bool prior_from_search = false;
+  if (options_.initial_branch_and_bound_match.enabled) {
+    prior_from_search = initial_matcher_.Match(submaps.front(), predicted, cloud, score, &prior);
+    if (!prior_from_search) ++stats_.initial_match_rejected;
   }
+  common::Rigid2d initial = prior;
+  if (options_.use_online_correlative_scan_matching) {
+    *score = real_time_matcher_.Match(prior, cloud, grid, &initial);
+  }
+  if (prior_from_search) prior = initial;
   common::Rigid2d refined;
   ceres::Solver::Summary summary;
-  ceres_matcher_.Match(predicted.translation(), initial, cloud, grid, &refined, &summary);
+  ceres_matcher_.Match(prior.translation(), initial, cloud, grid, &refined, &summary);
   return refined;
 }
 

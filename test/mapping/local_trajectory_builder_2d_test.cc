@@ -131,6 +131,95 @@ TEST(LocalTrajectoryBuilder2DTest, MotionFilterDropsStandingStillScan) {
   EXPECT_NEAR(third->T_local_tracking.x() - first->T_local_tracking.x(), 0.3, 0.03);
 }
 
+// Along the same arc, steps alternating 0.2 m and 1.2 m (4.6 and 27.5 deg) 0.1 s apart: the
+// constant-velocity prediction is off by ~1 m and ~23 deg on every scan after the second.
+common::Rigid2d JumpyPose(int i) {
+  const double s_m = 0.7 * (i / 2 * 2) + (i % 2 == 1 ? 0.2 : 0.0);
+  return test_world::ArcPose(1, s_m);
+}
+
+LocalTrajectoryBuilderOptions2D NoOdometryOptions(bool initial_match) {
+  LocalTrajectoryBuilderOptions2D options = TestOptions();
+  options.use_odometry = false;
+  options.pose_queue_duration_s = 0.15;
+  options.submaps.resolution_m = 0.1;
+  options.initial_branch_and_bound_match.enabled = initial_match;
+  // 1 deg beams leave gaps on far walls at 0.05 m; 0.2 m cells close them.
+  options.initial_branch_and_bound_match.matching_resolution_m = 0.2;
+  options.initial_branch_and_bound_match.fast_correlative_scan_matcher.linear_search_window_m = 2.0;
+  options.initial_branch_and_bound_match.fast_correlative_scan_matcher.angular_search_window_rad =
+      common::DegToRad(45.0);
+  return options;
+}
+
+struct TrackingError {
+  double max_m = 0.0;
+  double max_rad = 0.0;
+};
+
+// Runs `num_scans` of JumpyPose through `builder`; errors relative to the first pose.
+TrackingError TrackJumpyPath(LocalTrajectoryBuilder2D* builder, int num_scans,
+                             std::vector<common::Rigid2d>* estimates) {
+  const std::vector<Segment> walls = Room();
+  TrackingError error;
+  for (int i = 0; i < num_scans; ++i) {
+    const auto result = builder->AddScan(SimulateScan(walls, JumpyPose(i), 0.1 * i));
+    if (!result.has_value()) {
+      ADD_FAILURE() << "scan " << i;
+      return error;
+    }
+    estimates->push_back(result->T_local_tracking);
+    const common::Rigid2d truth = JumpyPose(0).inverse() * JumpyPose(i);
+    const common::Rigid2d estimate = estimates->front().inverse() * estimates->back();
+    error.max_m = std::max(error.max_m, (truth.translation() - estimate.translation()).norm());
+    error.max_rad = std::max(error.max_rad, AngleError(truth, estimate));
+  }
+  return error;
+}
+
+TEST(LocalTrajectoryBuilder2DTest, InitialBranchAndBoundMatchTracksLargeJumpsWithoutOdometry) {
+  constexpr int kNumScans = 20;  // 13.3 m, most of a lap around the island
+  std::vector<common::Rigid2d> with_estimates;
+  LocalTrajectoryBuilder2D with(NoOdometryOptions(true));
+  const TrackingError with_error = TrackJumpyPath(&with, kNumScans, &with_estimates);
+  std::vector<common::Rigid2d> without_estimates;
+  LocalTrajectoryBuilder2D without(NoOdometryOptions(false));
+  const TrackingError without_error = TrackJumpyPath(&without, kNumScans, &without_estimates);
+  std::printf("jumpy path max error: with %.4f m %.3f deg, without %.3f m %.2f deg\n",
+              with_error.max_m, with_error.max_rad * 180.0 / common::kPi, without_error.max_m,
+              without_error.max_rad * 180.0 / common::kPi);
+  // Within about a 0.1 m submap cell: far walls seen by 1 deg beams are sparse at this size.
+  EXPECT_LT(with_error.max_m, 0.2);
+  EXPECT_LT(with_error.max_rad, common::DegToRad(2.0));
+  EXPECT_EQ(with.stats().initial_match_rejected, 0);
+  EXPECT_EQ(with.stats().inserted, kNumScans);
+  // The small real-time window alone cannot follow these jumps.
+  EXPECT_GT(without_error.max_m, 0.5);
+  EXPECT_EQ(without.stats().initial_match_rejected, 0);
+}
+
+TEST(LocalTrajectoryBuilder2DTest, InitialMatchBelowMinScoreKeepsPredictionAndCounts) {
+  constexpr int kNumScans = 6;
+  LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
+  // No candidate's mean probability exceeds 1.
+  options.initial_branch_and_bound_match.fast_correlative_scan_matcher.min_score = 1.0;
+  LocalTrajectoryBuilder2D rejecting(options);
+  std::vector<common::Rigid2d> rejecting_estimates;
+  TrackJumpyPath(&rejecting, kNumScans, &rejecting_estimates);
+  // Every scan but the first (which has no submap to match against) is counted.
+  EXPECT_EQ(rejecting.stats().initial_match_rejected, kNumScans - 1);
+
+  // Rejected everywhere, the stage leaves the poses bit for bit as if it were disabled.
+  LocalTrajectoryBuilder2D disabled(NoOdometryOptions(false));
+  std::vector<common::Rigid2d> disabled_estimates;
+  TrackJumpyPath(&disabled, kNumScans, &disabled_estimates);
+  ASSERT_EQ(rejecting_estimates.size(), disabled_estimates.size());
+  for (size_t i = 0; i < disabled_estimates.size(); ++i) {
+    EXPECT_EQ(rejecting_estimates[i].translation(), disabled_estimates[i].translation()) << i;
+    EXPECT_EQ(rejecting_estimates[i].angle_rad(), disabled_estimates[i].angle_rad()) << i;
+  }
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

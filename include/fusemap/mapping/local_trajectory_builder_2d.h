@@ -11,6 +11,7 @@
 #include "fusemap/mapping/motion_filter.h"
 #include "fusemap/mapping/pose_extrapolator_2d.h"
 #include "fusemap/mapping/scan_matching/ceres_scan_matcher_2d.h"
+#include "fusemap/mapping/scan_matching/initial_match_2d.h"
 #include "fusemap/mapping/scan_matching/real_time_correlative_scan_matcher_2d.h"
 #include "fusemap/mapping/submap_2d.h"
 #include "fusemap/sensor/range_data_builder.h"
@@ -31,6 +32,9 @@ struct LocalTrajectoryBuilderOptions2D {
   sensor::AdaptiveVoxelFilterOptions loop_closure_adaptive_voxel_filter;
   // Scans with fewer returns than this are counted and skipped: too little to match against.
   int min_num_returns = 10;
+  // Branch and bound in a large window before the fine matchers, for logs whose prediction
+  // can be metres off (no odometry, sparse scans).
+  InitialMatchOptions2D initial_branch_and_bound_match;
   bool use_online_correlative_scan_matching = true;
   RealTimeCorrelativeScanMatcherOptions2D real_time_correlative_scan_matcher;
   CeresScanMatcherOptions2D ceres_scan_matcher;
@@ -45,7 +49,8 @@ struct LocalTrajectoryBuilderOptions2D {
 };
 
 // Keys: T_tracking_laser [x_m, y_m, yaw_rad], range_gate, voxel_filter_size_m,
-// adaptive_voxel_filter, loop_closure_adaptive_voxel_filter, min_num_returns, use_online_correlative_scan_matching,
+// adaptive_voxel_filter, loop_closure_adaptive_voxel_filter, min_num_returns,
+// initial_branch_and_bound_match, use_online_correlative_scan_matching,
 // real_time_correlative_scan_matcher, ceres_scan_matcher, motion_filter, submaps,
 // use_odometry, use_imu, pose_queue_duration_s.
 LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader);
@@ -77,6 +82,9 @@ class LocalTrajectoryBuilder2D {
     int inserted = 0;
     int odometry_rejected = 0;
     int imu_rejected = 0;
+    // Scans whose initial branch-and-bound match stayed below min_score (the prediction was
+    // kept). Not in checkpoints: map_builder_state_codec predates it.
+    int initial_match_rejected = 0;
   };
 
   explicit LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderOptions2D& options);
@@ -108,6 +116,7 @@ class LocalTrajectoryBuilder2D {
   LocalTrajectoryBuilderOptions2D options_;
   ActiveSubmaps2D active_submaps_;
   MotionFilter motion_filter_;
+  InitialMatcher2D initial_matcher_;
   RealTimeCorrelativeScanMatcher2D real_time_matcher_;
   CeresScanMatcher2D ceres_matcher_;
   PoseExtrapolator2D extrapolator_;

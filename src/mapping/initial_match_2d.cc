@@ -1,0 +1,155 @@
+#include "fusemap/mapping/scan_matching/initial_match_2d.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <utility>
+#include <vector>
+
+namespace fusemap {
+namespace mapping {
+
+InitialMatchOptions2D::InitialMatchOptions2D() {
+  // Local SLAM's motion between scans, not loop closure's drift: a smaller default window.
+  fast_correlative_scan_matcher.linear_search_window_m = 2.0;
+  fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(30.0);
+  fast_correlative_scan_matcher.branch_and_bound_depth = 5;
+  // A cell hit once holds hit_probability (0.55 by default) and free space ~0.49, so a scan
+  // matched to a young submap scores just above 0.5.
+  fast_correlative_scan_matcher.min_score = 0.5;
+}
+
+bool InitialMatchOptions2D::IsValid(std::string* error) const {
+  if (!(matching_resolution_m >= 0.0)) {
+    *error = "matching_resolution_m must be >= 0";
+    return false;
+  }
+  if (!(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability)) {
+    *error = "unknown_probability must be in [0.1, 0.9]";
+    return false;
+  }
+  if (!(unknown_padding_m >= 0.0)) {
+    *error = "unknown_padding_m must be >= 0";
+    return false;
+  }
+  if (!(min_score_gain >= 0.0 && min_score_gain <= 1.0)) {
+    *error = "min_score_gain must be in [0, 1]";
+    return false;
+  }
+  if (!(near_linear_search_window_m >= 0.0 && near_angular_search_window_rad >= 0.0 &&
+        near_angular_search_window_rad <= common::kPi)) {
+    *error = "near_linear_search_window_m must be >= 0, near_angular_search_window_rad in [0, pi]";
+    return false;
+  }
+  if (refresh_every_n_insertions < 1) {
+    *error = "refresh_every_n_insertions must be >= 1";
+    return false;
+  }
+  return fast_correlative_scan_matcher.IsValid(error);
+}
+
+InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
+  InitialMatchOptions2D options;
+  reader.Get("enabled", &options.enabled);
+  reader.Get("matching_resolution_m", &options.matching_resolution_m);
+  reader.Get("unknown_probability", &options.unknown_probability);
+  reader.Get("unknown_padding_m", &options.unknown_padding_m);
+  reader.Get("min_score_gain", &options.min_score_gain);
+  reader.Get("near_linear_search_window_m", &options.near_linear_search_window_m);
+  reader.Get("near_angular_search_window_rad", &options.near_angular_search_window_rad);
+  reader.Get("refresh_every_n_insertions", &options.refresh_every_n_insertions);
+  // Read field by field, not with ParseFastCorrelativeScanMatcherOptions2D, so that absent
+  // keys keep this stage's defaults rather than loop closure's.
+  FastCorrelativeScanMatcherOptions2D& fast = options.fast_correlative_scan_matcher;
+  reader.Get("linear_search_window_m", &fast.linear_search_window_m);
+  reader.Get("angular_search_window_rad", &fast.angular_search_window_rad);
+  reader.Get("branch_and_bound_depth", &fast.branch_and_bound_depth);
+  reader.Get("min_score", &fast.min_score);
+  std::string error;
+  if (!options.IsValid(&error)) reader.AddError("refresh_every_n_insertions", error);
+  return options;
+}
+
+ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unknown_probability,
+                            int pad_cells) {
+  assert(factor >= 1 && pad_cells >= 0);
+  const ProbabilityGrid cropped = grid.Cropped();
+  const MapLimits& fine = cropped.limits();
+  MapLimits coarse = fine;
+  coarse.resolution_m = fine.resolution_m * factor;
+  coarse.origin_m -= Eigen::Vector2d::Constant(pad_cells * coarse.resolution_m);
+  coarse.num_x_cells = (fine.num_x_cells + factor - 1) / factor + 2 * pad_cells;
+  coarse.num_y_cells = (fine.num_y_cells + factor - 1) / factor + 2 * pad_cells;
+  // Cell values increase with probability and kUnknownValue is 0, so the maximum value is the
+  // most likely occupied known cell, or unknown if none is known.
+  std::vector<uint16_t> cells(static_cast<size_t>(coarse.num_x_cells) * coarse.num_y_cells,
+                              kUnknownValue);
+  for (int y = 0; y < fine.num_y_cells; ++y) {
+    for (int x = 0; x < fine.num_x_cells; ++x) {
+      const Eigen::Array2i cell(x / factor + pad_cells, y / factor + pad_cells);
+      uint16_t& value = cells[coarse.FlatIndex(cell)];
+      value = std::max(value, cropped.cells()[fine.FlatIndex(Eigen::Array2i(x, y))]);
+    }
+  }
+  if (unknown_probability > kMinProbability) {
+    const uint16_t unknown_value = ProbabilityToValue(unknown_probability);
+    for (uint16_t& value : cells) {
+      if (value == kUnknownValue) value = unknown_value;
+    }
+  }
+  return ProbabilityGrid(coarse, std::move(cells));
+}
+
+InitialMatcher2D::InitialMatcher2D(const InitialMatchOptions2D& options) : options_(options) {
+  std::string error;
+  assert(options_.IsValid(&error));
+  (void)error;
+}
+
+bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
+                             const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
+                             double* score, common::Rigid2d* pose) {
+  assert(submap != nullptr && score != nullptr && pose != nullptr);
+  const bool same_submap = cached_submap_.lock() == submap;
+  if (matcher_ == nullptr || !same_submap ||
+      submap->num_range_data() - cached_num_range_data_ >= options_.refresh_every_n_insertions) {
+    const int factor = std::max(
+        1, static_cast<int>(std::lround(options_.matching_resolution_m /
+                                        submap->grid().limits().resolution_m)));
+    const double coarse_resolution_m = factor * submap->grid().limits().resolution_m;
+    const int pad_cells =
+        options_.unknown_probability > kMinProbability
+            ? static_cast<int>(std::ceil(options_.unknown_padding_m / coarse_resolution_m))
+            : 0;
+    const ProbabilityGrid coarse =
+        MaxPoolGrid(submap->grid(), factor, options_.unknown_probability, pad_cells);
+    matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(
+        coarse, options_.fast_correlative_scan_matcher);
+    if (options_.min_score_gain > 0.0) {
+      FastCorrelativeScanMatcherOptions2D local;
+      local.linear_search_window_m = options_.near_linear_search_window_m;
+      local.angular_search_window_rad = options_.near_angular_search_window_rad;
+      local.branch_and_bound_depth = options_.fast_correlative_scan_matcher.branch_and_bound_depth;
+      local_matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(coarse, local);
+    }
+    cached_submap_ = submap;
+    cached_num_range_data_ = submap->num_range_data();
+    ++num_precomputations_;
+  }
+  const double min_score = options_.fast_correlative_scan_matcher.min_score;
+  if (!matcher_->Match(predicted, cloud, min_score, score, pose)) return false;
+  if (options_.min_score_gain <= 0.0) return true;
+  // Along a featureless corridor many offsets score alike and the widest search may pick any
+  // of them; the best pose near the prediction wins unless the wide answer is clearly better.
+  double local_score = 0.0;
+  common::Rigid2d local_pose;
+  if (local_matcher_->Match(predicted, cloud, 0.0, &local_score, &local_pose) &&
+      *score < local_score + options_.min_score_gain) {
+    *score = local_score;
+    *pose = local_pose;
+  }
+  return true;
+}
+
+}  // namespace mapping
+}  // namespace fusemap

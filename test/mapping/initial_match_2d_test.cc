@@ -1,0 +1,92 @@
+#include "fusemap/mapping/scan_matching/initial_match_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+#include "fusemap/mapping/probability_values.h"
+#include "testing/synthetic_room.h"
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+ProbabilityGrid SmallGrid() {
+  MapLimits limits;
+  limits.resolution_m = 0.1;
+  limits.origin_m = Eigen::Vector2d(1.0, -2.0);
+  limits.num_x_cells = 5;
+  limits.num_y_cells = 4;
+  ProbabilityGrid grid(limits);
+  grid.SetProbability(Eigen::Array2i(0, 0), 0.3f);
+  grid.SetProbability(Eigen::Array2i(1, 1), 0.8f);  // same 2x2 block as (0, 0)
+  grid.SetProbability(Eigen::Array2i(4, 3), 0.2f);  // alone in the last, partial block
+  return grid;
+}
+
+TEST(MaxPoolGridTest, KeepsTheMostOccupiedKnownCellPerBlock) {
+  const ProbabilityGrid coarse = MaxPoolGrid(SmallGrid(), 2, kMinProbability, 0);
+  // Cropped to the known cells (0, 0)..(4, 3): 5 x 4 fine cells, 3 x 2 coarse ones.
+  EXPECT_DOUBLE_EQ(coarse.limits().resolution_m, 0.2);
+  EXPECT_EQ(coarse.limits().num_x_cells, 3);
+  EXPECT_EQ(coarse.limits().num_y_cells, 2);
+  EXPECT_NEAR(coarse.GetProbability(Eigen::Array2i(0, 0)), 0.8f, 1e-3);
+  EXPECT_NEAR(coarse.GetProbability(Eigen::Array2i(2, 1)), 0.2f, 1e-3);
+  EXPECT_FALSE(coarse.IsKnown(Eigen::Array2i(1, 0)));
+  // Same world positions: the point at the centre of fine cell (1, 1) is in coarse cell (0, 0).
+  EXPECT_TRUE((coarse.limits().GetCellIndex(Eigen::Vector2f(1.15f, -1.85f)) ==
+               Eigen::Array2i(0, 0)).all());
+}
+
+TEST(MaxPoolGridTest, FillsUnknownAndPads) {
+  const ProbabilityGrid coarse = MaxPoolGrid(SmallGrid(), 2, 0.5f, 3);
+  EXPECT_EQ(coarse.limits().num_x_cells, 3 + 6);
+  EXPECT_EQ(coarse.limits().num_y_cells, 2 + 6);
+  EXPECT_NEAR(coarse.GetProbability(Eigen::Array2i(3, 3)), 0.8f, 1e-3);
+  EXPECT_NEAR(coarse.GetProbability(Eigen::Array2i(4, 3)), 0.5f, 1e-3);  // was unknown
+  EXPECT_NEAR(coarse.GetProbability(Eigen::Array2i(0, 0)), 0.5f, 1e-3);  // padding
+  EXPECT_TRUE((coarse.limits().GetCellIndex(Eigen::Vector2f(1.15f, -1.85f)) ==
+               Eigen::Array2i(3, 3)).all());
+}
+
+// A submap of the synthetic room seen from `pose` (world frame = local frame).
+std::shared_ptr<Submap2D> RoomSubmap(const common::Rigid2d& pose) {
+  auto submap = std::make_shared<Submap2D>(pose.translation().cast<float>(), 0.05);
+  const RangeDataInserter2D inserter{ProbabilityGridRangeDataInserterOptions()};
+  for (int i = 0; i < 5; ++i) {
+    submap->InsertRangeData(
+        sensor::TransformRangeData(test_world::SimulateRangeData(test_world::Room(), pose), pose),
+        inserter);
+  }
+  return submap;
+}
+
+TEST(InitialMatcher2DTest, FindsAPoseFarFromThePredictionAndCachesGrids) {
+  const common::Rigid2d truth(3.0, 2.0, 0.3);
+  const std::shared_ptr<const Submap2D> submap = RoomSubmap(truth);
+  const sensor::PointCloud2d cloud =
+      test_world::SimulateRangeData(test_world::Room(), truth).returns;
+  InitialMatchOptions2D options;
+  options.enabled = true;
+  options.matching_resolution_m = 0.2;
+  options.refresh_every_n_insertions = 3;
+  InitialMatcher2D matcher(options);
+  double score = 0.0;
+  common::Rigid2d pose;
+  // 1.2 m and 0.4 rad off: far outside a real-time correlative window.
+  ASSERT_TRUE(matcher.Match(submap, common::Rigid2d(4.0, 1.4, -0.1), cloud, &score, &pose));
+  EXPECT_GT(score, 0.6);
+  EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.2);  // one search cell
+  EXPECT_NEAR(pose.angle_rad(), truth.angle_rad(), 0.03);
+  ASSERT_TRUE(matcher.Match(submap, truth, cloud, &score, &pose));
+  EXPECT_EQ(matcher.num_precomputations(), 1);  // same submap, no new insertions
+
+  // Another submap always rebuilds.
+  ASSERT_TRUE(matcher.Match(RoomSubmap(truth), truth, cloud, &score, &pose));
+  EXPECT_EQ(matcher.num_precomputations(), 2);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace fusemap
