@@ -11,6 +11,7 @@
 #include "fusemap/cloud/free_space_carver.h"
 #include "fusemap/cloud/map_block_index.h"
 #include "fusemap/cloud/region_stack.h"
+#include "fusemap/cloud/revisit_merger.h"
 
 namespace fusemap {
 namespace cloud {
@@ -72,6 +73,10 @@ bool CloudBinderOptions::IsValid(std::string* error) const {
     *error = "regions_with_merge_index must be >= 1";
     return false;
   }
+  if (merge_min_hits_beyond_window < 1) {
+    *error = "merge_min_hits_beyond_window must be >= 1";
+    return false;
+  }
   if (index_block_voxels < 1 || index_block_voxels > 64) {
     *error = "index_block_voxels must be in [1, 64]";
     return false;
@@ -95,6 +100,8 @@ CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader) {
   reader.Get("dynamic_max_ray_length_m", &options.dynamic_max_ray_length_m);
   reader.Get("index_block_voxels", &options.index_block_voxels);
   reader.Get("regions_with_merge_index", &options.regions_with_merge_index);
+  reader.Get("merge_revisits", &options.merge_revisits);
+  reader.Get("merge_min_hits_beyond_window", &options.merge_min_hits_beyond_window);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
   return options;
@@ -144,7 +151,7 @@ size_t CloudBinder::Repose(int submap_id, const common::Rigid3d& T_map_submap) {
   if (it == regions_.end()) return 0;
   RegionStack& region = *it->second;
   const size_t rebuilt = region.SetPose(T_map_submap);
-  if (options_.remove_dynamic) {
+  if (UsesIndex()) {
     index_->RemoveRegion(submap_id);
     const auto& voxels = region.voxels();
     for (uint32_t slot = 0; slot < voxels.size(); ++slot) {
@@ -297,10 +304,23 @@ void CloudBinder::AddCloud(int submap_id, const common::Rigid3d& T_submap_camera
     CarveFreeSpace(T_map_camera, *cloud.points_camera, frame_index);
     stats_.last_carve_ms = MillisecondsSince(carve_start);
   }
+  const ColorCloud* to_insert = cloud.points_camera.get();
+  ColorCloud::Ptr not_merged;
+  if (options_.merge_revisits) {
+    const auto merge_start = std::chrono::steady_clock::now();
+    RevisitMergeOptions merge_options;
+    merge_options.carve_window = options_.carve_submap_window;
+    merge_options.min_hits_beyond_window = options_.merge_min_hits_beyond_window;
+    not_merged = MergeRevisits(*cloud.points_camera, T_map_camera, submap_id, frame_index,
+                               merge_options, *index_, &regions_,
+                               &stats_.points_merged_into_other_regions);
+    to_insert = not_merged.get();
+    stats_.last_merge_ms = MillisecondsSince(merge_start);
+  }
   const size_t alive_before = region.num_alive();
   std::vector<uint32_t> new_slots;
-  region.Insert(*cloud.points_camera, T_submap_camera, frame_index, &new_slots);
-  if (options_.remove_dynamic) IndexSlots(submap_id, region, new_slots);
+  region.Insert(*to_insert, T_submap_camera, frame_index, &new_slots);
+  if (UsesIndex()) IndexSlots(submap_id, region, new_slots);
   for (const ColorPoint& p : cloud.points_camera->points) {
     if (IsFinite(p)) ++stats_.points_in;
   }

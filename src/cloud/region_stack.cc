@@ -68,23 +68,28 @@ void RegionStack::Insert(const ColorCloud& points_camera, const common::Rigid3d&
       if (new_slots != nullptr) new_slots->push_back(inserted.first->second);
       continue;
     }
-    const uint32_t slot = inserted.first->second;
-    RegionVoxel& voxel = voxels_[slot];
-    // Running means keep float precision bounded however often a wall is re-observed.
-    voxel.num_points = voxel.num_points == std::numeric_limits<uint32_t>::max()
-                           ? voxel.num_points
-                           : voxel.num_points + 1;
-    const float w = 1.f / static_cast<float>(voxel.num_points);
-    voxel.mean_submap += w * (p_submap - voxel.mean_submap);
-    voxel.mean_rgb += w * (rgb - voxel.mean_rgb);
-    if (voxel.last_hit_frame != frame_index) {
-      voxel.last_hit_frame = frame_index;
-      if (voxel.hits < kMaxCount) ++voxel.hits;
-    }
-    (*map_cloud_)[slot] = ToMapPoint(voxel);
+    AddHit(inserted.first->second, p_submap, rgb, frame_index);
   }
   map_cloud_->width = static_cast<uint32_t>(map_cloud_->size());
   map_cloud_->height = 1;
+}
+
+void RegionStack::AddHit(uint32_t slot, const Eigen::Vector3f& p_submap, const Eigen::Vector3f& rgb,
+                         int frame_index) {
+  assert(slot < voxels_.size() && voxels_[slot].alive());
+  RegionVoxel& voxel = voxels_[slot];
+  // Running means keep float precision bounded however often a wall is re-observed.
+  voxel.num_points = voxel.num_points == std::numeric_limits<uint32_t>::max()
+                         ? voxel.num_points
+                         : voxel.num_points + 1;
+  const float w = 1.f / static_cast<float>(voxel.num_points);
+  voxel.mean_submap += w * (p_submap - voxel.mean_submap);
+  voxel.mean_rgb += w * (rgb - voxel.mean_rgb);
+  if (voxel.last_hit_frame != frame_index) {
+    voxel.last_hit_frame = frame_index;
+    if (voxel.hits < kMaxCount) ++voxel.hits;
+  }
+  (*map_cloud_)[slot] = ToMapPoint(voxel);
 }
 
 void RegionStack::ReleaseKeyIndex() {

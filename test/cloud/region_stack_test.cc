@@ -87,6 +87,29 @@ TEST(RegionStackTest, SetPoseMovesEveryLivePoint) {
               1e-5f);
 }
 
+TEST(RegionStackTest, AddHitMergesLikeInsertAndRefreshesTheMapPoint) {
+  const Rigid3d T_map_submap(Eigen::Vector3d(1.0, 0.0, 0.0), Eigen::Quaterniond::Identity());
+  RegionStack by_insert(0.1, T_map_submap);
+  RegionStack by_hit(0.1, T_map_submap);
+  const ColorCloud first = MakePoints({{0.01f, 0.01f, 0.01f}}, 100);
+  by_insert.Insert(first, Rigid3d::Identity(), 0, nullptr);
+  by_hit.Insert(first, Rigid3d::Identity(), 0, nullptr);
+  const std::vector<Eigen::Vector3f> later = {{0.05f, 0.03f, 0.01f}, {0.09f, 0.08f, 0.07f}};
+  by_insert.Insert(MakePoints(later, 200), Rigid3d::Identity(), 3, nullptr);
+  for (const Eigen::Vector3f& p : later) by_hit.AddHit(0, p, Eigen::Vector3f(200.f, 0.f, 0.f), 3);
+  ASSERT_EQ(by_hit.num_alive(), 1u);
+  const RegionVoxel& a = by_insert.voxels()[0];
+  const RegionVoxel& b = by_hit.voxels()[0];
+  EXPECT_EQ(b.num_points, 3u);
+  EXPECT_EQ(b.hits, 2);  // two points of frame 3 count once
+  EXPECT_EQ(b.hits, a.hits);
+  EXPECT_EQ(b.last_hit_frame, 3);
+  EXPECT_NEAR((b.mean_submap - a.mean_submap).norm(), 0.f, 1e-6f);
+  EXPECT_NEAR(b.mean_rgb.x(), 500.f / 3.f, 1e-3f);
+  EXPECT_NEAR(by_hit.map_cloud()[0].x, 1.f + b.mean_submap.x(), 1e-6f);
+  EXPECT_EQ(by_hit.map_cloud()[0].r, 167);
+}
+
 }  // namespace
 }  // namespace cloud
 }  // namespace fusemap

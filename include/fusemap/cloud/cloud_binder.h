@@ -49,6 +49,15 @@ struct CloudBinderOptions {
   // Regions that most recently received clouds keep their merge hash; older ones free it
   // (clouds bind to the active submaps, so the hash of a finished one is dead weight).
   int regions_with_merge_index = 4;
+  // Revisits: a point of a frame that falls into a live voxel of another region (in that
+  // region's submap grid) is merged into that voxel instead of starting a voxel in the frame's
+  // own region, so a loop driven again and again does not store its walls once per lap. Uses
+  // the map-frame index, which is then kept even without remove_dynamic.
+  bool merge_revisits = false;
+  // ... but into a region more than carve_submap_window submaps away only if the voxel was seen
+  // in at least this many frames: frames cannot carve such a region, so hits they add to a
+  // voxel (a person's) could never be outweighed by the current lap's free-space evidence.
+  int merge_min_hits_beyond_window = 2;
 
   bool IsValid(std::string* error) const;
 };
@@ -56,7 +65,7 @@ struct CloudBinderOptions {
 // Keys: voxel_size_m, remove_dynamic, ray_carving, carve_pixel_stride, carve_window_cells,
 // carve_submap_window, dynamic_no_return_carve_m, dynamic_carves_per_hit, dynamic_ray_stride, dynamic_margin_voxels,
 // dynamic_margin_range_fraction, dynamic_max_ray_length_m, index_block_voxels,
-// regions_with_merge_index.
+// regions_with_merge_index, merge_revisits, merge_min_hits_beyond_window.
 CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader);
 
 struct CloudBinderStats {
@@ -66,12 +75,14 @@ struct CloudBinderStats {
   size_t points_stored = 0;  // live voxels = points in GlobalCloud()
   size_t regions = 0;
   int64_t points_removed_dynamic = 0;
+  int64_t points_merged_into_other_regions = 0;  // merge_revisits: points not stored anew
   int64_t rebuilt_points_total = 0;  // map-frame points recomputed by re-posing, ever
   size_t last_update_regions = 0;    // of the last OnSubmapsMoved / SetSubmapPose
   size_t last_update_points = 0;
   double last_update_ms = 0.0;
   double last_frame_ms = 0.0;  // last AddCloud, carving included
   double last_carve_ms = 0.0;        // ray carving inside the last AddCloud
+  double last_merge_ms = 0.0;        // revisit search and merge inside the last AddCloud
   double last_depth_carve_ms = 0.0;  // last CarveWithDepth
 };
 
@@ -122,6 +133,8 @@ class CloudBinder {
 
  private:
   RegionStack& GetOrCreateRegion(int submap_id);
+  bool UsesIndex() const { return options_.remove_dynamic || options_.merge_revisits; }
+
   size_t Repose(int submap_id, const common::Rigid3d& T_map_submap);
   void IndexSlots(int submap_id, const RegionStack& region, const std::vector<uint32_t>& slots);
   void CarveFreeSpace(const common::Rigid3d& T_map_camera, const ColorCloud& points_camera,

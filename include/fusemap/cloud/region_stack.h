@@ -43,6 +43,11 @@ class RegionStack {
   // are appended to *new_slots (for the caller's map-frame index).
   void Insert(const ColorCloud& points_camera, const common::Rigid3d& T_submap_camera,
               int frame_index, std::vector<uint32_t>* new_slots);
+  // Merges one point (submap frame, inside the voxel's cell) into the live voxel in `slot`
+  // exactly as Insert merges into an existing voxel: running means, num_points, one hit per
+  // frame; refreshes the slot's map-frame point. For points of frames bound to other submaps.
+  void AddHit(uint32_t slot, const Eigen::Vector3f& p_submap, const Eigen::Vector3f& rgb,
+              int frame_index);
 
   // Frees the key-to-slot hash (about 40 bytes per voxel) of a region that no longer receives
   // clouds; the next Insert rebuilds it from the voxels. Everything else keeps working.
