@@ -104,6 +104,7 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->U8(has_grid ? 1 : 0);
     if (has_grid) EncodeSubmapState(state.submaps[s], compress_grids, out);
   }
+  out->I32(g.first_node);
   out->U64(g.nodes.size());
   for (const auto& node : g.nodes) {
     out->F64(node.stamp_s);
@@ -162,6 +163,15 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
   const pose_graph::PoseGraphState2D& g = state.pose_graph;
   const size_t num_submaps = state.submaps.size();
   const size_t num_nodes = g.nodes.size();
+  if (g.first_node < 0) {
+    in->Fail("negative first node index");
+    return false;
+  }
+  // Constraints and searches name nodes by global index; the held ones start at first_node.
+  const auto held_node = [&g, num_nodes](int node) {
+    return node >= g.first_node && InRange(node - g.first_node, num_nodes) &&
+           !g.nodes[node - g.first_node].trimmed;
+  };
   if (g.submaps.size() != num_submaps || g.T_map_submaps.size() != num_submaps ||
       g.T_map_nodes.size() != num_nodes) {
     in->Fail("the numbers of submaps and nodes disagree between the state's parts");
@@ -176,9 +186,9 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     }
   }
   for (size_t s = 0; s < num_submaps; ++s) {
-    // Every pulse is one (node, submap) pair tried once, so there are at most num_nodes.
+    // Every pulse is one (node, submap) pair tried once, so there are at most as many as nodes.
     if (g.submaps[s].sampler_pulses < 0 ||
-        static_cast<uint64_t>(g.submaps[s].sampler_pulses) > num_nodes) {
+        static_cast<uint64_t>(g.submaps[s].sampler_pulses) > num_nodes + g.first_node) {
       in->Fail("submap " + std::to_string(s) + " sampler count is out of range");
       return false;
     }
@@ -192,16 +202,14 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     }
   }
   for (const auto& c : g.constraints) {
-    if (!InRange(c.submap, num_submaps) || !InRange(c.node, num_nodes) ||
-        g.submaps[c.submap].trimmed || g.nodes[c.node].trimmed) {
+    if (!InRange(c.submap, num_submaps) || !held_node(c.node) || g.submaps[c.submap].trimmed) {
       in->Fail("a constraint names a missing or trimmed node or submap");
       return false;
     }
   }
   for (const auto& search : g.searches_in_flight) {
-    if (!InRange(search.submap, num_submaps) || !InRange(search.node, num_nodes) ||
-        !g.submaps[search.submap].finished || g.submaps[search.submap].trimmed ||
-        g.nodes[search.node].trimmed) {
+    if (!InRange(search.submap, num_submaps) || !held_node(search.node) ||
+        !g.submaps[search.submap].finished || g.submaps[search.submap].trimmed) {
       in->Fail("a pending search names a missing, trimmed or unfinished node or submap");
       return false;
     }
@@ -242,7 +250,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     if (present && !DecodeSubmapState(in, &state->submaps[s])) return false;
   }
   pose_graph::PoseGraphState2D& g = state->pose_graph;
-  if (!in->Count(kNodeBytes, &n)) return false;
+  if (!in->I32(&g.first_node) || !in->Count(kNodeBytes, &n)) return false;
   g.nodes.resize(n);
   for (auto& node : g.nodes) {
     if (!in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {

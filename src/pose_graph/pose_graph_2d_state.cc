@@ -12,6 +12,7 @@ PoseGraphState2D PoseGraph2D::ExportState(
   PoseGraphState2D state;
   submaps->clear();
   std::lock_guard<std::mutex> lock(mutex_);
+  state.first_node = first_node_;
   state.nodes.reserve(nodes_.size());
   for (const auto& node : nodes_) {
     state.nodes.push_back(
@@ -41,6 +42,7 @@ void PoseGraph2D::RestoreState(
   {
     std::lock_guard<std::mutex> lock(mutex_);
     assert(nodes_.empty() && submaps_.empty());
+    first_node_ = state.first_node;
     assert(submaps.size() == state.submaps.size());
     assert(state.T_map_nodes.size() == state.nodes.size());
     assert(state.T_map_submaps.size() == state.submaps.size());

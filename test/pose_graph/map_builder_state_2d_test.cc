@@ -161,6 +161,56 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   ExpectSamePoses(original.NodePoses(), restored->NodePoses());
 }
 
+// Archiving the trimmed front of the graph takes memory, not information: the archived nodes
+// followed by the ones kept are the run without archiving, and a state exported after
+// archiving restores and continues exactly.
+TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
+  const std::vector<Input> input = LoopInput(2.2);
+  common::InlineExecutor executor;
+  MapBuilderOptions2D options = TestOptions(0.3);
+  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
+  trimmer.fresh_submaps_count = 1;
+  trimmer.min_covered_area_m2 = 0.5;
+  trimmer.min_added_submaps_count = 2;
+  MapBuilder2D plain(options, &executor);
+  MapBuilder2D archiving(options, &executor);
+  std::vector<MapBuilder2D::TimedPose2d> archived;
+  const size_t split = input.size() * 2 / 3;
+  for (size_t begin = 0; begin < split; begin += 20) {
+    const size_t end = std::min(split, begin + 20);
+    Feed(input, begin, end, &plain);
+    Feed(input, begin, end, &archiving);
+    for (const auto& node : archiving.pose_graph().TakeTrimmedPrefix(input[end - 1].scan.stamp_s)) {
+      archived.push_back({node.stamp_s, node.T_map_node});
+    }
+  }
+  const int first_node = archiving.pose_graph().first_node();
+  ASSERT_GT(first_node, 0);
+  ASSERT_EQ(static_cast<int>(archived.size()), first_node);
+  EXPECT_EQ(archiving.pose_graph().Snapshot()->first_node, first_node);
+  // Nothing later than the stamp given is taken.
+  EXPECT_TRUE(archiving.pose_graph().TakeTrimmedPrefix(-1.0).empty());
+
+  const MapBuilderState2D state = archiving.ExportState();
+  EXPECT_EQ(state.pose_graph.first_node, first_node);
+  EXPECT_LT(state.pose_graph.nodes.size(), plain.ExportState().pose_graph.nodes.size());
+  auto restored = MapBuilder2D::Restore(options, &executor, state);
+  EXPECT_EQ(restored->pose_graph().first_node(), first_node);
+  Feed(input, split, input.size(), &plain);
+  Feed(input, split, input.size(), &archiving);
+  Feed(input, split, input.size(), restored.get());
+  plain.Finish();
+  archiving.Finish();
+  restored->Finish();
+
+  EXPECT_EQ(archiving.pose_graph().stats().loop_closures_found,
+            plain.pose_graph().stats().loop_closures_found);
+  auto whole = archived;
+  for (const auto& node : archiving.NodePoses()) whole.push_back(node);
+  ExpectSamePoses(plain.NodePoses(), whole);
+  ExpectSamePoses(archiving.NodePoses(), restored->NodePoses());
+}
+
 // Holds tasks until RunAll(), so a test can export while work is deterministically in flight.
 class DeferredExecutor : public common::Executor {
  public:
