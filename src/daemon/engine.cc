@@ -56,14 +56,15 @@ void Engine::ConnectBuilder() {
   });
 }
 
-void Engine::Restore(const pose_graph::MapBuilderState2D& state) {
+void Engine::Restore(const pose_graph::MapBuilderState2D& state,
+                     std::vector<sensor::OdometryData> odometry) {
   std::lock_guard<std::mutex> lock(finish_mutex_);
   assert(!started_);
   builder_ = pose_graph::MapBuilder2D::Restore(slam_.map_builder, executor_.get(), state);
   ConnectBuilder();
   intake_.SeedStamps(LastStateStamp(state));
   last_stamp_s_ = std::max(0.0, LastStateStamp(state));
-  resumed_ = true;
+  odometry_ = std::move(odometry);
 }
 
 Engine::~Engine() { Finish(); }
@@ -166,10 +167,28 @@ void Engine::MaybeCheckpoint(bool force) {
   }
   last_checkpoint_ = now;
   executor_->WaitIdle();
+  ArchiveSettled();
+  RunRecord record;
+  record.odometry = &odometry_;
+  if (archive_) record.archive = &archive_->mark();
   std::string error;
-  if (!checkpointer_->Save(*builder_, &error)) {
+  if (!checkpointer_->Save(*builder_, record, &error)) {
     ++checkpoint_failures_;
     if (log_ != nullptr) log_->Report("checkpoint", error);
+  }
+}
+
+void Engine::ArchiveSettled() {
+  // Odometry may still arrive for a run that has none yet, and would change the densified
+  // trajectory of every node, settled or not.
+  if (!archive_ || (odometry_.empty() && !archive_->mark().has_carry)) return;
+  const double newest_s = odometry_.empty() ? archive_->mark().carry.stamp_s
+                                            : odometry_.back().stamp_s;
+  const auto nodes = builder_->pose_graph().TakeTrimmedPrefix(newest_s);
+  std::string error;
+  if (!archive_->Append(nodes, &odometry_, &error)) {
+    ++archive_failures_;
+    if (log_ != nullptr) log_->Report("trajectory archive", error);
   }
 }
 
@@ -283,9 +302,9 @@ bool Engine::WriteOutputs(const std::string& dir, std::string* error,
   run.odometry = &odometry_;
   run.map_resolution_m = slam_.map_builder.local_slam.submaps.resolution_m;
   run.cloud_mapper = cloud_mapper();
+  run.archive = archive_.get();
   io::RunOutputsReport local_report;
-  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error) &&
-         (!resumed_ || WriteResumedTrajectory(*builder_, odometry_, dir, error));
+  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error);
 }
 
 }  // namespace daemon

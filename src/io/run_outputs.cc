@@ -145,19 +145,29 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
     return false;
   }
   const auto nodes = run.builder->NodePoses();
-  const auto dense = pose_graph::DensifyWithOdometry(nodes, *run.odometry);
-  std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
-  for (const auto& o : *run.odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+  eval::Trajectory dense, all_nodes, all_odometry;
+  if (run.archive != nullptr) {
+    if (!run.archive->ReadWholeRun(nodes, *run.odometry, &dense, &all_nodes, &all_odometry,
+                                   error)) {
+      return false;
+    }
+  } else {
+    dense = ToTrajectory(pose_graph::DensifyWithOdometry(nodes, *run.odometry));
+    all_nodes = ToTrajectory(nodes);
+    std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
+    for (const auto& o : *run.odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+    all_odometry = ToTrajectory(raw_odometry);
+  }
   const std::string out = dir + "/";
-  if (!WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
-      !WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||
-      !WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), error)) {
+  if (!WriteTumTrajectoryFile(out + "trajectory.tum", dense, error) ||
+      !WriteTumTrajectoryFile(out + "nodes.tum", all_nodes, error) ||
+      !WriteTumTrajectoryFile(out + "odometry.tum", all_odometry, error)) {
     return false;
   }
   report->files.insert(report->files.end(),
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
   std::vector<Eigen::Vector2d> xy;
-  for (const auto& p : dense) xy.push_back(p.pose.translation());
+  for (const auto& p : dense) xy.push_back(p.pose.translation().head<2>());
   mapping::GridImage laser_map;
   if (!WriteMap(run, xy, out, report, &laser_map, error)) return false;
   if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {

@@ -42,8 +42,10 @@ constexpr char kUsage[] =
     "DIR/cloud.png, while changed cloud regions go out on FUSEMAP_CLOUD_REGION as\n"
     "fusemap_lcm.cloud_region_t, at most every 0.5 s). Its state goes to\n"
     "DIR/checkpoint.fmck every daemon.checkpoint_period_s and at shutdown (the one before is\n"
-    "kept as DIR/checkpoint.fmck.prev). After --resume, trajectory.tum has a pose per node up\n"
-    "to the resume point and a pose per odometry sample after it.\n"
+    "kept as DIR/checkpoint.fmck.prev), with the odometry record. With submap trimming\n"
+    "(global_slam.overlapping_submaps_trimmer), each checkpoint first moves the trimmed nodes\n"
+    "and the odometry they settle out of memory into DIR/archive/ (trajectory.tum, nodes.tum,\n"
+    "odometry.tum), so memory stays flat in a mapped place; the outputs cover the whole run.\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
@@ -175,8 +177,18 @@ int Run(const Args& args) {
     if (!args.quiet) std::fprintf(stderr, "fusemapd: %s\n", line.c_str());
   });
   engine->SetCheckpointer(&checkpointer);
+  std::string warning;
+  auto archive = io::TrajectoryArchive::Open(args.out + "/archive",
+                                             args.resume ? &resume.contents.archive : nullptr,
+                                             &warning, &error);
+  if (!archive) {
+    std::fprintf(stderr, "fusemapd: trajectory archive: %s\n", error.c_str());
+    return kExitRuntime;
+  }
+  if (!warning.empty()) std::fprintf(stderr, "fusemapd: --resume: %s\n", warning.c_str());
+  engine->SetTrajectoryArchive(std::move(archive));
   if (args.resume) {
-    engine->Restore(resume.contents.state);
+    engine->Restore(resume.contents.state, std::move(resume.contents.odometry));
     std::fprintf(stderr, "fusemapd: resumed from %s (%zu nodes, %zu submaps)\n",
                  resume.used_path.c_str(), resume.contents.state.pose_graph.nodes.size(),
                  resume.contents.state.submaps.size());
