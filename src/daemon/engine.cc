@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 #include <utility>
 #include <variant>
 
@@ -117,7 +118,10 @@ void Engine::Process(SensorMessage& message) {
   } else if (auto* odometry = std::get_if<sensor::OdometryData>(&message.data)) {
     // As fusemap_offline: odometry that goes back in time is skipped, the rest recorded for
     // the densified trajectory. (Intake already rejects those; this keeps the two paths equal.)
-    if (!odometry_.empty() && odometry->stamp_s < odometry_.back().stamp_s) return;
+    const double last_s = !odometry_.empty() ? odometry_.back().stamp_s
+                          : archive_               ? archive_->mark().last_odometry_stamp_s
+                                                   : -std::numeric_limits<double>::infinity();
+    if (odometry->stamp_s < last_s) return;
     odometry_.push_back(*odometry);
     builder_->AddOdometry(*odometry);
   } else if (auto* imu = std::get_if<sensor::ImuData>(&message.data)) {
@@ -179,12 +183,8 @@ void Engine::MaybeCheckpoint(bool force) {
 }
 
 void Engine::ArchiveSettled() {
-  // Odometry may still arrive for a run that has none yet, and would change the densified
-  // trajectory of every node, settled or not.
-  if (!archive_ || (odometry_.empty() && !archive_->mark().has_carry)) return;
-  const double newest_s = odometry_.empty() ? archive_->mark().carry.stamp_s
-                                            : odometry_.back().stamp_s;
-  const auto nodes = builder_->pose_graph().TakeTrimmedPrefix(newest_s);
+  if (!archive_) return;
+  const auto nodes = builder_->pose_graph().TakeTrimmedNodes();
   std::string error;
   if (!archive_->Append(nodes, &odometry_, &error)) {
     ++archive_failures_;

@@ -99,25 +99,13 @@ bool DecodeOdometry(ByteReader* in, std::vector<sensor::OdometryData>* odometry)
 }
 
 void EncodeArchiveMark(const TrajectoryArchiveMark& m, ByteWriter* out) {
-  out->U64(m.trajectory_bytes);
   out->U64(m.nodes_bytes);
   out->U64(m.odometry_bytes);
-  out->U8(m.has_last_node ? 1 : 0);
-  out->F64(m.last_node.stamp_s);
-  EncodeRigid2d(m.last_node.T_map_node, out);
-  out->U8(m.has_carry ? 1 : 0);
-  out->F64(m.carry.stamp_s);
-  EncodeRigid2d(m.carry.pose, out);
-  out->F64(m.last_output_stamp_s);
   out->F64(m.last_odometry_stamp_s);
 }
 
 bool DecodeArchiveMark(ByteReader* in, TrajectoryArchiveMark* m) {
-  return in->U64(&m->trajectory_bytes) && in->U64(&m->nodes_bytes) &&
-         in->U64(&m->odometry_bytes) && in->Bool(&m->has_last_node) &&
-         in->F64(&m->last_node.stamp_s) && DecodeRigid2d(in, &m->last_node.T_map_node) &&
-         in->Bool(&m->has_carry) && in->F64(&m->carry.stamp_s) &&
-         DecodeRigid2d(in, &m->carry.pose) && in->F64(&m->last_output_stamp_s) &&
+  return in->U64(&m->nodes_bytes) && in->U64(&m->odometry_bytes) &&
          in->F64(&m->last_odometry_stamp_s);
 }
 

@@ -1,5 +1,6 @@
 #include "fusemap/io/map_builder_state_codec.h"
 
+#include <algorithm>
 #include <string>
 
 #include "fusemap/io/submap_state_codec.h"
@@ -104,9 +105,9 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->U8(has_grid ? 1 : 0);
     if (has_grid) EncodeSubmapState(state.submaps[s], compress_grids, out);
   }
-  out->I32(g.first_node);
   out->U64(g.nodes.size());
   for (const auto& node : g.nodes) {
+    out->I32(node.index);
     out->F64(node.stamp_s);
     EncodeRigid2d(node.T_local_node, out);
     out->U64(node.cloud.size());
@@ -163,14 +164,19 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
   const pose_graph::PoseGraphState2D& g = state.pose_graph;
   const size_t num_submaps = state.submaps.size();
   const size_t num_nodes = g.nodes.size();
-  if (g.first_node < 0) {
-    in->Fail("negative first node index");
-    return false;
+  for (size_t n = 0; n < num_nodes; ++n) {
+    if (g.nodes[n].index < (n == 0 ? 0 : g.nodes[n - 1].index + 1) ||
+        g.nodes[n].index >= g.stats.nodes) {
+      in->Fail("node indices are not increasing within the nodes added");
+      return false;
+    }
   }
-  // Constraints and searches name nodes by global index; the held ones start at first_node.
-  const auto held_node = [&g, num_nodes](int node) {
-    return node >= g.first_node && InRange(node - g.first_node, num_nodes) &&
-           !g.nodes[node - g.first_node].trimmed;
+  // Constraints and searches name nodes by index; a trimmed node may have left the graph.
+  const auto held_node = [&g](int node) {
+    const auto it = std::lower_bound(
+        g.nodes.begin(), g.nodes.end(), node,
+        [](const pose_graph::PoseGraphState2D::Node& n, int index) { return n.index < index; });
+    return it != g.nodes.end() && it->index == node && !it->trimmed;
   };
   if (g.submaps.size() != num_submaps || g.T_map_submaps.size() != num_submaps ||
       g.T_map_nodes.size() != num_nodes) {
@@ -188,7 +194,7 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
   for (size_t s = 0; s < num_submaps; ++s) {
     // Every pulse is one (node, submap) pair tried once, so there are at most as many as nodes.
     if (g.submaps[s].sampler_pulses < 0 ||
-        static_cast<uint64_t>(g.submaps[s].sampler_pulses) > num_nodes + g.first_node) {
+        g.submaps[s].sampler_pulses > g.stats.nodes) {
       in->Fail("submap " + std::to_string(s) + " sampler count is out of range");
       return false;
     }
@@ -237,7 +243,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   *state = pose_graph::MapBuilderState2D();
   // Minimum encoded sizes of list elements, for Count's allocation guard.
   constexpr size_t kSubmapBytes = 1;  // a trimmed one
-  constexpr size_t kNodeBytes = 8 + 24 + 8 + 8 + 1;
+  constexpr size_t kNodeBytes = 4 + 8 + 24 + 8 + 8 + 1;
   size_t n = 0;
   if (!in->Count(kSubmapBytes, &n)) return false;
   state->submaps.resize(n);
@@ -250,10 +256,10 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     if (present && !DecodeSubmapState(in, &state->submaps[s])) return false;
   }
   pose_graph::PoseGraphState2D& g = state->pose_graph;
-  if (!in->I32(&g.first_node) || !in->Count(kNodeBytes, &n)) return false;
+  if (!in->Count(kNodeBytes, &n)) return false;
   g.nodes.resize(n);
   for (auto& node : g.nodes) {
-    if (!in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
+    if (!in->I32(&node.index) || !in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
       return false;
     }
     node.cloud.resize(n);

@@ -144,30 +144,29 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
     *error = "cannot create output folder " + dir + ": " + ec.message();
     return false;
   }
-  const auto nodes = run.builder->NodePoses();
-  eval::Trajectory dense, all_nodes, all_odometry;
+  auto nodes = run.builder->NodePoses();
+  std::vector<sensor::OdometryData> archived_odometry;
   if (run.archive != nullptr) {
-    if (!run.archive->ReadWholeRun(nodes, *run.odometry, &dense, &all_nodes, &all_odometry,
-                                   error)) {
+    std::vector<pose_graph::MapBuilder2D::TimedPose2d> held = std::move(nodes);
+    if (!run.archive->ReadWholeRun(held, *run.odometry, &nodes, &archived_odometry, error)) {
       return false;
     }
-  } else {
-    dense = ToTrajectory(pose_graph::DensifyWithOdometry(nodes, *run.odometry));
-    all_nodes = ToTrajectory(nodes);
-    std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
-    for (const auto& o : *run.odometry) raw_odometry.push_back({o.stamp_s, o.pose});
-    all_odometry = ToTrajectory(raw_odometry);
   }
+  const std::vector<sensor::OdometryData>& odometry =
+      run.archive != nullptr ? archived_odometry : *run.odometry;
+  const auto dense = pose_graph::DensifyWithOdometry(nodes, odometry);
+  std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
+  for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
   const std::string out = dir + "/";
-  if (!WriteTumTrajectoryFile(out + "trajectory.tum", dense, error) ||
-      !WriteTumTrajectoryFile(out + "nodes.tum", all_nodes, error) ||
-      !WriteTumTrajectoryFile(out + "odometry.tum", all_odometry, error)) {
+  if (!WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
+      !WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||
+      !WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), error)) {
     return false;
   }
   report->files.insert(report->files.end(),
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
   std::vector<Eigen::Vector2d> xy;
-  for (const auto& p : dense) xy.push_back(p.pose.translation().head<2>());
+  for (const auto& p : dense) xy.push_back(p.pose.translation());
   mapping::GridImage laser_map;
   if (!WriteMap(run, xy, out, report, &laser_map, error)) return false;
   if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {

@@ -1,36 +1,76 @@
 #include "fusemap/io/trajectory_archive.h"
 
 #include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <system_error>
 #include <utility>
 
-#include "fusemap/io/tum_trajectory.h"
+#include "fusemap/io/byte_buffer.h"
 
 namespace fusemap {
 namespace io {
 namespace {
 
-constexpr const char* kNames[3] = {"trajectory.tum", "nodes.tum", "odometry.tum"};
+enum File { kNodes = 0, kOdometry = 1 };
+constexpr const char* kNames[2] = {"nodes.bin", "odometry.bin"};
+constexpr std::uint64_t kRecordBytes[2] = {4 + 4 * 8, 4 * 8};
 
 std::string Errno(const std::string& path, const char* what) {
   return path + ": " + what + ": " + std::strerror(errno);
 }
 
-eval::TimedPose3d ToPose3d(double stamp_s, const common::Rigid2d& pose) {
-  return {stamp_s, common::Rigid3d::FromRigid2d(pose)};
+void PutPose(double stamp_s, const common::Rigid2d& pose, ByteWriter* out) {
+  out->F64(stamp_s);
+  out->F64(pose.x());
+  out->F64(pose.y());
+  out->F64(pose.angle_rad());
+}
+
+bool GetPose(ByteReader* in, double* stamp_s, common::Rigid2d* pose) {
+  double x = 0.0, y = 0.0, angle = 0.0;
+  if (!in->F64(stamp_s) || !in->F64(&x) || !in->F64(&y) || !in->F64(&angle)) return false;
+  if (!std::isfinite(*stamp_s) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(angle)) {
+    in->Fail("a value is not finite");
+    return false;
+  }
+  *pose = common::Rigid2d({x, y}, angle);
+  return true;
+}
+
+bool ReadAll(const std::string& path, std::uint64_t length, std::uint64_t record_bytes,
+             std::string* bytes, std::string* error) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = path + ": cannot open";
+    return false;
+  }
+  bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  if (bytes->size() < length) {
+    *error = path + ": " + std::to_string(bytes->size()) + " bytes, the archive wrote " +
+             std::to_string(length);
+    return false;
+  }
+  bytes->resize(length);
+  if (length % record_bytes != 0) {
+    *error = path + ": " + std::to_string(length) + " bytes is not a whole number of records";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace
 
 struct TrajectoryArchive::Files {
-  int fd[3] = {-1, -1, -1};
-  std::string path[3];
+  int fd[2] = {-1, -1};
+  std::string path[2];
   ~Files() {
     for (int f : fd) {
       if (f >= 0) ::close(f);
@@ -47,7 +87,7 @@ struct TrajectoryArchive::Files {
       }
       done += static_cast<size_t>(n);
     }
-    if (::fsync(fd[i]) != 0) {
+    if (!bytes.empty() && ::fsync(fd[i]) != 0) {
       *error = Errno(path[i], "fsync failed");
       return false;
     }
@@ -73,32 +113,31 @@ std::unique_ptr<TrajectoryArchive> TrajectoryArchive::Open(const std::string& di
     *error = "cannot create " + dir + ": " + ec.message();
     return nullptr;
   }
-  auto files = std::make_unique<Files>();
   TrajectoryArchiveMark start = mark != nullptr ? *mark : TrajectoryArchiveMark();
-  std::uint64_t lengths[3] = {start.trajectory_bytes, start.nodes_bytes, start.odometry_bytes};
-  for (int i = 0; i < 3; ++i) {
+  std::uint64_t* lengths[2] = {&start.nodes_bytes, &start.odometry_bytes};
+  for (int i = 0; i < 2; ++i) {
+    const std::string path = dir + "/" + kNames[i];
     std::error_code size_ec;
-    const auto size = std::filesystem::file_size(dir + "/" + kNames[i], size_ec);
-    if (lengths[i] > 0 && (size_ec || size < lengths[i])) {
-      *warning = dir + "/" + kNames[i] + " holds " + (size_ec ? "nothing" : std::to_string(size) +
-                 " bytes") + ", the checkpoint recorded " + std::to_string(lengths[i]) +
-                 ": the archive starts over (the outputs miss the part archived before)";
-      start.trajectory_bytes = start.nodes_bytes = start.odometry_bytes = 0;
-      for (auto& length : lengths) length = 0;
+    const auto size = std::filesystem::file_size(path, size_ec);
+    if (*lengths[i] > 0 && (size_ec || size < *lengths[i])) {
+      *warning = path + " holds " + (size_ec ? std::string("nothing") : std::to_string(size) +
+                 " bytes") + ", the checkpoint recorded " + std::to_string(*lengths[i]) +
+                 ": the archive starts over (the outputs miss what was archived before)";
+      start = TrajectoryArchiveMark();
       break;
     }
   }
-  for (int i = 0; i < 3; ++i) {
+  auto files = std::make_unique<Files>();
+  for (int i = 0; i < 2; ++i) {
     files->path[i] = dir + "/" + kNames[i];
-    // Without a mark the archive starts empty; with one, whatever was appended after that
-    // checkpoint was written is cut off again (the restored state will append it anew).
-    const int flags = O_WRONLY | O_CREAT | O_CLOEXEC | (mark == nullptr ? O_TRUNC : 0);
-    files->fd[i] = ::open(files->path[i].c_str(), flags, 0644);
+    files->fd[i] = ::open(files->path[i].c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
     if (files->fd[i] < 0) {
       *error = Errno(files->path[i], "cannot open");
       return nullptr;
     }
-    if (::ftruncate(files->fd[i], static_cast<off_t>(lengths[i])) != 0 ||
+    // Whatever was appended after the checkpoint was written is cut off again: the restored
+    // state appends it anew.
+    if (::ftruncate(files->fd[i], static_cast<off_t>(*lengths[i])) != 0 ||
         ::lseek(files->fd[i], 0, SEEK_END) < 0) {
       *error = Errno(files->path[i], "cannot cut back to the checkpoint");
       return nullptr;
@@ -107,88 +146,70 @@ std::unique_ptr<TrajectoryArchive> TrajectoryArchive::Open(const std::string& di
   return std::unique_ptr<TrajectoryArchive>(new TrajectoryArchive(dir, start, std::move(files)));
 }
 
-std::vector<TrajectoryArchive::TimedPose2d> TrajectoryArchive::WithLastNode(
-    const std::vector<TimedPose2d>& nodes) const {
-  std::vector<TimedPose2d> out;
-  out.reserve(nodes.size() + 1);
-  if (mark_.has_last_node) out.push_back({mark_.last_node.stamp_s, mark_.last_node.T_map_node});
-  out.insert(out.end(), nodes.begin(), nodes.end());
-  return out;
-}
-
-std::vector<sensor::OdometryData> TrajectoryArchive::WithCarry(
-    const std::vector<sensor::OdometryData>& odometry) const {
-  std::vector<sensor::OdometryData> out;
-  out.reserve(odometry.size() + 1);
-  if (mark_.has_carry) out.push_back(mark_.carry);
-  out.insert(out.end(), odometry.begin(), odometry.end());
-  return out;
-}
-
 bool TrajectoryArchive::Append(const std::vector<pose_graph::ArchivedNode2D>& nodes,
                                std::vector<sensor::OdometryData>* odometry, std::string* error) {
-  if (nodes.empty()) return true;
-  std::vector<TimedPose2d> new_nodes;
-  for (const auto& node : nodes) new_nodes.push_back({node.stamp_s, node.T_map_node});
-  const double end_s = nodes.back().stamp_s;
-  // Samples before the newest archived node lie between archived nodes (or before the first),
-  // so their poses are final; from end_s on they also depend on the nodes still in the graph.
-  eval::Trajectory dense, node_lines, odometry_lines;
-  if (!odometry->empty() || mark_.has_carry) {
-    for (const auto& pose : pose_graph::DensifyWithOdometry(WithLastNode(new_nodes),
-                                                            WithCarry(*odometry))) {
-      if (pose.stamp_s <= mark_.last_output_stamp_s || pose.stamp_s >= end_s) continue;
-      dense.push_back(ToPose3d(pose.stamp_s, pose.pose));
-      mark_.last_output_stamp_s = pose.stamp_s;
-    }
-  }
-  double last_node_s = mark_.has_last_node ? mark_.last_node.stamp_s
-                                           : -std::numeric_limits<double>::infinity();
+  std::string node_bytes, odometry_bytes;
+  ByteWriter node_out(&node_bytes), odometry_out(&odometry_bytes);
   for (const auto& node : nodes) {
-    if (node.stamp_s <= last_node_s) continue;
-    node_lines.push_back(ToPose3d(node.stamp_s, node.T_map_node));
-    last_node_s = node.stamp_s;
+    node_out.I32(node.node);
+    PutPose(node.stamp_s, node.T_map_node, &node_out);
   }
-  size_t settled = 0;
-  while (settled < odometry->size() && (*odometry)[settled].stamp_s < end_s) {
-    const sensor::OdometryData& sample = (*odometry)[settled++];
-    if (sample.stamp_s <= mark_.last_odometry_stamp_s) continue;
-    odometry_lines.push_back(ToPose3d(sample.stamp_s, sample.pose));
-    mark_.last_odometry_stamp_s = sample.stamp_s;
+  for (const auto& sample : *odometry) PutPose(sample.stamp_s, sample.pose, &odometry_out);
+  if (!files_->Append(kNodes, node_bytes, &mark_.nodes_bytes, error) ||
+      !files_->Append(kOdometry, odometry_bytes, &mark_.odometry_bytes, error)) {
+    return false;
   }
-  if (settled > 0) {
-    mark_.has_carry = true;
-    mark_.carry = (*odometry)[settled - 1];
-    odometry->erase(odometry->begin(), odometry->begin() + static_cast<std::ptrdiff_t>(settled));
-  }
-  mark_.has_last_node = true;
-  mark_.last_node = nodes.back();
-  return files_->Append(0, FormatTumLines(dense), &mark_.trajectory_bytes, error) &&
-         files_->Append(1, FormatTumLines(node_lines), &mark_.nodes_bytes, error) &&
-         files_->Append(2, FormatTumLines(odometry_lines), &mark_.odometry_bytes, error);
+  if (!odometry->empty()) mark_.last_odometry_stamp_s = odometry->back().stamp_s;
+  odometry->clear();
+  odometry->shrink_to_fit();
+  return true;
 }
 
 bool TrajectoryArchive::ReadWholeRun(const std::vector<TimedPose2d>& nodes,
                                      const std::vector<sensor::OdometryData>& odometry,
-                                     eval::Trajectory* trajectory, eval::Trajectory* all_nodes,
-                                     eval::Trajectory* all_odometry, std::string* error) const {
-  eval::Trajectory* out[3] = {trajectory, all_nodes, all_odometry};
-  for (int i = 0; i < 3; ++i) {
-    if (!ReadTumTrajectoryFile(files_->path[i], out[i], error)) return false;
+                                     std::vector<TimedPose2d>* all_nodes,
+                                     std::vector<sensor::OdometryData>* all_odometry,
+                                     std::string* error) const {
+  std::string bytes[2];
+  const std::uint64_t lengths[2] = {mark_.nodes_bytes, mark_.odometry_bytes};
+  for (int i = 0; i < 2; ++i) {
+    if (!ReadAll(files_->path[i], lengths[i], kRecordBytes[i], &bytes[i], error)) return false;
   }
-  const auto append = [](eval::Trajectory* to, double stamp_s, const common::Rigid2d& pose) {
-    if (to->empty() || stamp_s > to->back().stamp_s) to->push_back(ToPose3d(stamp_s, pose));
-  };
-  if (!odometry.empty() || mark_.has_carry) {
-    for (const auto& pose :
-         pose_graph::DensifyWithOdometry(WithLastNode(nodes), WithCarry(odometry))) {
-      if (pose.stamp_s > mark_.last_output_stamp_s) append(trajectory, pose.stamp_s, pose.pose);
+  std::vector<std::pair<int, TimedPose2d>> indexed;
+  ByteReader node_in(bytes[kNodes].data(), bytes[kNodes].size());
+  while (node_in.remaining() > 0) {
+    int32_t index = 0;
+    TimedPose2d pose;
+    if (!node_in.I32(&index) || !GetPose(&node_in, &pose.stamp_s, &pose.pose)) {
+      *error = files_->path[kNodes] + ": " + node_in.error();
+      return false;
     }
-  } else {
-    for (const auto& node : nodes) append(trajectory, node.stamp_s, node.pose);
+    indexed.push_back({index, pose});
   }
-  for (const auto& node : nodes) append(all_nodes, node.stamp_s, node.pose);
-  for (const auto& sample : odometry) append(all_odometry, sample.stamp_s, sample.pose);
+  // Nodes leave the graph whenever they are trimmed, not in order.
+  std::sort(indexed.begin(), indexed.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<TimedPose2d> archived;
+  archived.reserve(indexed.size());
+  for (const auto& [index, pose] : indexed) archived.push_back(pose);
+  all_nodes->clear();
+  all_nodes->reserve(archived.size() + nodes.size());
+  std::merge(archived.begin(), archived.end(), nodes.begin(), nodes.end(),
+             std::back_inserter(*all_nodes),
+             [](const TimedPose2d& a, const TimedPose2d& b) { return a.stamp_s < b.stamp_s; });
+
+  all_odometry->clear();
+  all_odometry->reserve(bytes[kOdometry].size() / kRecordBytes[kOdometry] + odometry.size());
+  ByteReader odometry_in(bytes[kOdometry].data(), bytes[kOdometry].size());
+  while (odometry_in.remaining() > 0) {
+    sensor::OdometryData sample;
+    if (!GetPose(&odometry_in, &sample.stamp_s, &sample.pose)) {
+      *error = files_->path[kOdometry] + ": " + odometry_in.error();
+      return false;
+    }
+    all_odometry->push_back(sample);
+  }
+  all_odometry->insert(all_odometry->end(), odometry.begin(), odometry.end());
   return true;
 }
 

@@ -1,6 +1,5 @@
 #include "fusemap/io/tum_trajectory.h"
 
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 
@@ -39,19 +38,6 @@ bool ReadTumTrajectoryFile(const std::string& path, eval::Trajectory* trajectory
   return ReadTumTrajectory(in, path, trajectory, error);
 }
 
-std::string FormatTumLines(const eval::Trajectory& trajectory) {
-  std::string out;
-  char line[256];
-  for (const eval::TimedPose3d& p : trajectory) {
-    const Eigen::Vector3d& t = p.pose.translation();
-    const Eigen::Quaterniond& q = p.pose.rotation();
-    const int n = std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n",
-                                p.stamp_s, t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
-    out.append(line, std::min<size_t>(n, sizeof(line) - 1));
-  }
-  return out;
-}
-
 bool WriteTumTrajectoryFile(const std::string& path, const eval::Trajectory& trajectory,
                             std::string* error) {
   std::FILE* file = std::fopen(path.c_str(), "w");
@@ -59,8 +45,13 @@ bool WriteTumTrajectoryFile(const std::string& path, const eval::Trajectory& tra
     *error = path + ": cannot open for writing";
     return false;
   }
-  const std::string lines = "# timestamp tx ty tz qx qy qz qw\n" + FormatTumLines(trajectory);
-  std::fwrite(lines.data(), 1, lines.size(), file);
+  std::fprintf(file, "# timestamp tx ty tz qx qy qz qw\n");
+  for (const eval::TimedPose3d& p : trajectory) {
+    const Eigen::Vector3d& t = p.pose.translation();
+    const Eigen::Quaterniond& q = p.pose.rotation();
+    std::fprintf(file, "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.stamp_s, t.x(), t.y(), t.z(),
+                 q.x(), q.y(), q.z(), q.w());
+  }
   const bool ok = std::fflush(file) == 0 && !std::ferror(file);
   if (std::fclose(file) != 0 || !ok) {
     *error = path + ": write failed";

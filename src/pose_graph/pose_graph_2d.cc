@@ -86,8 +86,8 @@ int PoseGraph2D::AddNode(
     const common::Rigid2d T_map_local = nodes_.empty()
                                             ? common::Rigid2d::Identity()
                                             : T_map_nodes_.back() * nodes_.back().T_local_node.inverse();
-    node = EndNodeLocked();
-    nodes_.push_back({stamp_s, T_local_node, filtered_cloud, {}, false});
+    node = stats_.nodes;
+    nodes_.push_back({node, stamp_s, T_local_node, filtered_cloud, {}, false});
     T_map_nodes_.push_back(T_map_local * T_local_node);
     ++stats_.nodes;
 
@@ -140,7 +140,8 @@ void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   for (int s : node_data.inserted_into) {
     if (s == submap) return;
   }
-  const common::Rigid2d T_submap_node = T_map_submaps_[submap].inverse() * T_map_node_locked(node);
+  const common::Rigid2d T_submap_node =
+      T_map_submaps_[submap].inverse() * T_map_nodes_[SlotLocked(node)];
   if (T_submap_node.translation().norm() > options_.constraint_builder.max_constraint_distance_m) {
     return;
   }
@@ -186,7 +187,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
       submaps_[s].matcher = matcher;
       for (const auto& search : searches) QueueSearchLocked(search);
       if (search_all_nodes) {
-        for (int n = first_node_; n < EndNodeLocked(); ++n) ScheduleSearchLocked(n, s);
+        for (size_t n = 0; n < nodes_.size(); ++n) ScheduleSearchLocked(nodes_[n].index, s);
       }
       tasks.swap(pending_tasks_);
     }
@@ -211,15 +212,18 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
     for (size_t n = 0; n < nodes_.size(); ++n) {
       if (nodes_[n].trimmed) continue;
       node_slot[n] = problem.AddNode(T_map_nodes_[n]);
-      node_ids.push_back(first_node_ + static_cast<int>(n));
+      node_ids.push_back(nodes_[n].index);
     }
     for (Constraint2D constraint : constraints_) {
       constraint.submap = submap_slot[constraint.submap];
-      constraint.node = node_slot[constraint.node - first_node_];
+      constraint.node = node_slot[SlotLocked(constraint.node)];
       problem.AddConstraint(constraint);
     }
     for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
-      if (node_slot[i] < 0 || node_slot[i + 1] < 0) continue;
+      // Not across a node that is gone (trimmed, or removed after trimming).
+      if (node_slot[i] < 0 || node_slot[i + 1] < 0 || nodes_[i + 1].index != nodes_[i].index + 1) {
+        continue;
+      }
       NodeToNodeConstraint2D c;
       c.from = node_slot[i];
       c.to = node_slot[i + 1];
@@ -244,23 +248,23 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     // The newest node is never trimmed (its submaps are still active), so the graph ends with
-    // node_ids.back() + 1 nodes as the problem was built. Nodes archived meanwhile were
+    // node_ids.back() + 1 nodes as the problem was built. Nodes removed meanwhile were
     // trimmed before it was built, so every node_ids entry is still held.
     const int num_nodes = node_ids.back() + 1;
     const size_t num_submaps = submap_ids.empty() ? 0 : submap_ids.back() + 1;
     const std::vector<common::Rigid2d> before(T_map_submaps_.begin(),
                                               T_map_submaps_.begin() + num_submaps);
     for (size_t i = 0; i < node_ids.size(); ++i) {
-      T_map_node_locked(node_ids[i]) = problem.T_map_nodes()[i];
+      T_map_nodes_[SlotLocked(node_ids[i])] = problem.T_map_nodes()[i];
     }
     for (size_t i = 0; i < submap_ids.size(); ++i) {
       T_map_submaps_[submap_ids[i]] = problem.T_map_submaps()[i];
     }
     // Work added while solving follows the correction of the last optimised node.
     const common::Rigid2d T_map_local =
-        T_map_node_locked(num_nodes - 1) * T_local_last_node.inverse();
-    for (int i = num_nodes; i < EndNodeLocked(); ++i) {
-      T_map_node_locked(i) = T_map_local * NodeLocked(i).T_local_node;
+        T_map_nodes_[SlotLocked(num_nodes - 1)] * T_local_last_node.inverse();
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      if (nodes_[i].index >= num_nodes) T_map_nodes_[i] = T_map_local * nodes_[i].T_local_node;
     }
     for (size_t i = num_submaps; i < submaps_.size(); ++i) {
       T_map_submaps_[i] = T_map_local * submaps_[i].submap->T_local_submap();
@@ -333,7 +337,7 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
   // A node is kept while some remaining submap holds it.
   std::vector<bool> held(nodes_.size(), false);
   for (const auto& c : constraints_) {
-    if (c.tag == Constraint2D::kIntraSubmap) held[c.node - first_node_] = true;
+    if (c.tag == Constraint2D::kIntraSubmap) held[SlotLocked(c.node)] = true;
   }
   for (size_t n = 0; n < nodes_.size(); ++n) {
     NodeData& node = nodes_[n];
@@ -374,7 +378,8 @@ std::shared_ptr<const PoseGraphSnapshot> PoseGraph2D::Snapshot() const {
   auto snapshot = std::make_shared<PoseGraphSnapshot>();
   std::lock_guard<std::mutex> lock(mutex_);
   snapshot->solve_count = solve_count_;
-  snapshot->first_node = first_node_;
+  snapshot->node_ids.reserve(nodes_.size());
+  for (const auto& node : nodes_) snapshot->node_ids.push_back(node.index);
   snapshot->T_map_submaps = T_map_submaps_;
   snapshot->T_map_nodes = T_map_nodes_;
   return snapshot;
@@ -394,23 +399,29 @@ std::vector<double> PoseGraph2D::node_stamps_s() const {
   return stamps;
 }
 
-int PoseGraph2D::first_node() const {
-  std::lock_guard<std::mutex> lock(mutex_);
-  return first_node_;
+int PoseGraph2D::SlotLocked(int node) const {
+  const auto it = std::lower_bound(nodes_.begin(), nodes_.end(), node,
+                                   [](const NodeData& n, int index) { return n.index < index; });
+  return it != nodes_.end() && it->index == node ? static_cast<int>(it - nodes_.begin()) : -1;
 }
 
-std::vector<ArchivedNode2D> PoseGraph2D::TakeTrimmedPrefix(double max_stamp_s) {
+std::vector<ArchivedNode2D> PoseGraph2D::TakeTrimmedNodes() {
   std::lock_guard<std::mutex> lock(mutex_);
-  size_t count = 0;
-  while (count < nodes_.size() && nodes_[count].trimmed && nodes_[count].stamp_s <= max_stamp_s) {
-    ++count;
-  }
   std::vector<ArchivedNode2D> taken;
-  taken.reserve(count);
-  for (size_t i = 0; i < count; ++i) taken.push_back({nodes_[i].stamp_s, T_map_nodes_[i]});
-  nodes_.erase(nodes_.begin(), nodes_.begin() + count);
-  T_map_nodes_.erase(T_map_nodes_.begin(), T_map_nodes_.begin() + count);
-  first_node_ += static_cast<int>(count);
+  size_t kept = 0;
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].trimmed) {
+      taken.push_back({nodes_[i].index, nodes_[i].stamp_s, T_map_nodes_[i]});
+      continue;
+    }
+    if (kept != i) {
+      nodes_[kept] = std::move(nodes_[i]);
+      T_map_nodes_[kept] = T_map_nodes_[i];
+    }
+    ++kept;
+  }
+  nodes_.resize(kept);
+  T_map_nodes_.resize(kept);
   return taken;
 }
 

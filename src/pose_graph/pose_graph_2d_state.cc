@@ -12,11 +12,11 @@ PoseGraphState2D PoseGraph2D::ExportState(
   PoseGraphState2D state;
   submaps->clear();
   std::lock_guard<std::mutex> lock(mutex_);
-  state.first_node = first_node_;
   state.nodes.reserve(nodes_.size());
   for (const auto& node : nodes_) {
     state.nodes.push_back(
-        {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
+        {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
+         node.trimmed});
   }
   for (const auto& submap : submaps_) {
     submaps->push_back(submap.submap);
@@ -42,13 +42,13 @@ void PoseGraph2D::RestoreState(
   {
     std::lock_guard<std::mutex> lock(mutex_);
     assert(nodes_.empty() && submaps_.empty());
-    first_node_ = state.first_node;
     assert(submaps.size() == state.submaps.size());
     assert(state.T_map_nodes.size() == state.nodes.size());
     assert(state.T_map_submaps.size() == state.submaps.size());
     for (const auto& node : state.nodes) {
       nodes_.push_back(
-          {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
+          {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
+         node.trimmed});
     }
     for (size_t s = 0; s < submaps.size(); ++s) {
       SubmapData data;

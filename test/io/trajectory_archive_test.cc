@@ -4,11 +4,9 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
-
-#include "fusemap/common/math.h"
-#include "fusemap/io/run_outputs.h"
 
 namespace fusemap {
 namespace io {
@@ -16,8 +14,7 @@ namespace {
 
 using TimedPose2d = pose_graph::MapBuilder2D::TimedPose2d;
 
-// A curving drive: nodes every 0.7 s, odometry every 0.1 s that drifts from them, with a
-// repeated stamp now and then (real logs have them).
+// A curving drive: a node every 0.7 s, odometry every 0.1 s.
 struct DriveRun {
   std::vector<TimedPose2d> nodes;
   std::vector<sensor::OdometryData> odometry;
@@ -27,10 +24,9 @@ DriveRun MakeRun() {
   DriveRun run;
   for (int i = 0; i <= 300; ++i) {
     const double t = 0.1 * i;
-    const common::Rigid2d truth({std::cos(0.1 * t) * 5.0, std::sin(0.1 * t) * 5.0}, 0.1 * t);
-    run.odometry.push_back({t, common::Rigid2d(1.03 * truth.translation(), 1.05 * truth.angle_rad())});
-    if (i % 37 == 5) run.odometry.push_back({t, run.odometry.back().pose});
-    if (i % 7 == 3) run.nodes.push_back({t + 0.02, truth});
+    const common::Rigid2d pose({std::cos(0.1 * t) * 5.0, std::sin(0.1 * t) * 5.0}, 0.1 * t + 0.3);
+    run.odometry.push_back({t, pose});
+    if (i % 7 == 3) run.nodes.push_back({t + 0.02, pose});
   }
   return run;
 }
@@ -41,62 +37,66 @@ std::string TempDir(const std::string& name) {
   return dir;
 }
 
-// Archives the nodes before each cut, with the odometry received by then, as the daemon does.
-std::vector<sensor::OdometryData> ArchiveUpTo(const DriveRun& run, const std::vector<double>& cuts_s,
-                                              size_t* nodes_archived, TrajectoryArchive* archive) {
-  std::vector<sensor::OdometryData> record;
+// As the daemon does at each checkpoint: every `period` nodes, hands over the nodes at odd
+// positions (trimming leaves holes, it does not eat the graph from the front) and the odometry
+// received so far. Returns the nodes kept and the record since the last append.
+void ArchiveInSteps(const DriveRun& run, size_t period, TrajectoryArchive* archive,
+                    std::vector<TimedPose2d>* kept, std::vector<sensor::OdometryData>* record) {
   size_t next_odometry = 0;
-  *nodes_archived = 0;
-  for (double cut_s : cuts_s) {
-    while (next_odometry < run.odometry.size() && run.odometry[next_odometry].stamp_s <= cut_s) {
-      record.push_back(run.odometry[next_odometry++]);
+  for (size_t begin = 0; begin < run.nodes.size(); begin += period) {
+    std::vector<pose_graph::ArchivedNode2D> taken;
+    for (size_t n = begin; n < std::min(run.nodes.size(), begin + period); ++n) {
+      if (n % 2 == 1) {
+        taken.push_back({static_cast<int>(n), run.nodes[n].stamp_s, run.nodes[n].pose});
+      } else {
+        kept->push_back(run.nodes[n]);
+      }
     }
-    std::vector<pose_graph::ArchivedNode2D> nodes;
-    while (*nodes_archived < run.nodes.size() && run.nodes[*nodes_archived].stamp_s < cut_s - 1.0) {
-      nodes.push_back({run.nodes[*nodes_archived].stamp_s, run.nodes[*nodes_archived].pose});
-      ++*nodes_archived;
+    const double until_s = run.nodes[std::min(run.nodes.size(), begin + period) - 1].stamp_s;
+    while (next_odometry < run.odometry.size() && run.odometry[next_odometry].stamp_s <= until_s) {
+      record->push_back(run.odometry[next_odometry++]);
     }
     std::string error;
-    EXPECT_TRUE(archive->Append(nodes, &record, &error)) << error;
+    ASSERT_TRUE(archive->Append(taken, record, &error)) << error;
+    EXPECT_TRUE(record->empty());
   }
-  record.insert(record.end(), run.odometry.begin() + next_odometry, run.odometry.end());
-  return record;
+  record->assign(run.odometry.begin() + next_odometry, run.odometry.end());
 }
 
-void ExpectSameTrajectory(const eval::Trajectory& expected, const eval::Trajectory& actual) {
+void ExpectBitForBit(const std::vector<TimedPose2d>& expected, const std::vector<TimedPose2d>& actual) {
   ASSERT_EQ(actual.size(), expected.size());
   for (size_t i = 0; i < actual.size(); ++i) {
-    ASSERT_NEAR(actual[i].stamp_s, expected[i].stamp_s, 1e-6) << i;
-    // The archived part went through the TUM text (1e-9).
-    EXPECT_LT((actual[i].pose.translation() - expected[i].pose.translation()).norm(), 1e-8) << i;
-    EXPECT_LT(std::abs(common::NormalizeAngle(actual[i].pose.ToRigid2d().angle_rad() -
-                                              expected[i].pose.ToRigid2d().angle_rad())),
-              1e-8)
-        << i;
+    EXPECT_EQ(actual[i].stamp_s, expected[i].stamp_s) << i;
+    EXPECT_EQ(actual[i].pose.translation(), expected[i].pose.translation()) << i;
+    EXPECT_EQ(actual[i].pose.angle_rad(), expected[i].pose.angle_rad()) << i;
   }
 }
 
-TEST(TrajectoryArchiveTest, ArchivedPiecesAndTheRestAreTheWholeRunDensified) {
+void ExpectBitForBit(const std::vector<sensor::OdometryData>& expected,
+                     const std::vector<sensor::OdometryData>& actual) {
+  std::vector<TimedPose2d> a, b;
+  for (const auto& o : expected) a.push_back({o.stamp_s, o.pose});
+  for (const auto& o : actual) b.push_back({o.stamp_s, o.pose});
+  ExpectBitForBit(a, b);
+}
+
+TEST(TrajectoryArchiveTest, WholeRunComesBackBitForBit) {
   const DriveRun run = MakeRun();
   std::string error, warning;
   auto archive = TrajectoryArchive::Open(TempDir("archive_whole"), nullptr, &warning, &error);
   ASSERT_NE(archive, nullptr) << error;
-  size_t archived = 0;
-  const auto record = ArchiveUpTo(run, {3.0, 3.05, 9.0, 17.3, 24.0}, &archived, archive.get());
-  ASSERT_GT(archived, 20u);
-  // The record keeps only what the graph's nodes still need.
-  EXPECT_LT(record.size(), run.odometry.size() / 2);
-  EXPECT_GT(archive->mark().trajectory_bytes, 1000u);
+  std::vector<TimedPose2d> kept;
+  std::vector<sensor::OdometryData> record;
+  ArchiveInSteps(run, 6, archive.get(), &kept, &record);
+  EXPECT_EQ(archive->mark().nodes_bytes, 36u * (run.nodes.size() - kept.size()));
+  EXPECT_GT(archive->mark().odometry_bytes, 32u * 250);
+  EXPECT_LT(record.size(), 40u);
 
-  const std::vector<TimedPose2d> kept(run.nodes.begin() + archived, run.nodes.end());
-  eval::Trajectory trajectory, nodes, odometry;
-  ASSERT_TRUE(archive->ReadWholeRun(kept, record, &trajectory, &nodes, &odometry, &error)) << error;
-  ExpectSameTrajectory(ToTrajectory(pose_graph::DensifyWithOdometry(run.nodes, run.odometry)),
-                       trajectory);
-  ExpectSameTrajectory(ToTrajectory(run.nodes), nodes);
-  std::vector<TimedPose2d> raw;
-  for (const auto& o : run.odometry) raw.push_back({o.stamp_s, o.pose});
-  ExpectSameTrajectory(ToTrajectory(raw), odometry);
+  std::vector<TimedPose2d> nodes;
+  std::vector<sensor::OdometryData> odometry;
+  ASSERT_TRUE(archive->ReadWholeRun(kept, record, &nodes, &odometry, &error)) << error;
+  ExpectBitForBit(run.nodes, nodes);
+  ExpectBitForBit(run.odometry, odometry);
 }
 
 TEST(TrajectoryArchiveTest, ResumeCutsTheFilesBackToTheCheckpointsMark) {
@@ -104,60 +104,65 @@ TEST(TrajectoryArchiveTest, ResumeCutsTheFilesBackToTheCheckpointsMark) {
   const std::string dir = TempDir("archive_resume");
   std::string error, warning;
   TrajectoryArchiveMark mark;
-  std::vector<sensor::OdometryData> record_at_mark;
-  size_t archived_at_mark = 0;
   {
     auto archive = TrajectoryArchive::Open(dir, nullptr, &warning, &error);
     ASSERT_NE(archive, nullptr) << error;
-    record_at_mark = ArchiveUpTo(run, {6.0, 12.0}, &archived_at_mark, archive.get());
+    std::vector<sensor::OdometryData> record(run.odometry.begin(), run.odometry.begin() + 100);
+    ASSERT_TRUE(archive->Append({{0, run.nodes[0].stamp_s, run.nodes[0].pose}}, &record, &error));
     mark = archive->mark();
-    // Appends after the checkpoint, then a crash.
-    std::vector<sensor::OdometryData> later = record_at_mark;
-    std::vector<pose_graph::ArchivedNode2D> more;
-    for (size_t i = archived_at_mark; i < archived_at_mark + 5; ++i) {
-      more.push_back({run.nodes[i].stamp_s, run.nodes[i].pose});
-    }
-    ASSERT_TRUE(archive->Append(more, &later, &error)) << error;
-    ASSERT_GT(archive->mark().nodes_bytes, mark.nodes_bytes);
+    // Appended after that checkpoint, then a crash.
+    record.assign(run.odometry.begin() + 100, run.odometry.begin() + 150);
+    ASSERT_TRUE(archive->Append({{1, run.nodes[1].stamp_s, run.nodes[1].pose}}, &record, &error));
   }
+  EXPECT_EQ(mark.last_odometry_stamp_s, run.odometry[99].stamp_s);
   auto resumed = TrajectoryArchive::Open(dir, &mark, &warning, &error);
   ASSERT_NE(resumed, nullptr) << error;
   EXPECT_TRUE(warning.empty()) << warning;
-  EXPECT_EQ(std::filesystem::file_size(dir + "/nodes.tum"), mark.nodes_bytes);
-  const std::vector<TimedPose2d> kept(run.nodes.begin() + archived_at_mark, run.nodes.end());
-  eval::Trajectory trajectory, nodes, odometry;
-  ASSERT_TRUE(resumed->ReadWholeRun(kept, record_at_mark, &trajectory, &nodes, &odometry, &error))
-      << error;
-  ExpectSameTrajectory(ToTrajectory(run.nodes), nodes);
-  ExpectSameTrajectory(ToTrajectory(pose_graph::DensifyWithOdometry(run.nodes, run.odometry)),
-                       trajectory);
+  EXPECT_EQ(std::filesystem::file_size(dir + "/nodes.bin"), 36u);
+  EXPECT_EQ(std::filesystem::file_size(dir + "/odometry.bin"), 3200u);
+  const std::vector<TimedPose2d> kept(run.nodes.begin() + 1, run.nodes.end());
+  const std::vector<sensor::OdometryData> rest(run.odometry.begin() + 100, run.odometry.end());
+  std::vector<TimedPose2d> nodes;
+  std::vector<sensor::OdometryData> odometry;
+  ASSERT_TRUE(resumed->ReadWholeRun(kept, rest, &nodes, &odometry, &error)) << error;
+  ExpectBitForBit(run.nodes, nodes);
+  ExpectBitForBit(run.odometry, odometry);
 
-  // An archive shorter than the checkpoint says is not the checkpoint's: it starts over from
-  // the mark, so mapping goes on and the outputs begin after the lost part.
+  // An archive shorter than the checkpoint says is not the checkpoint's: it starts over, so
+  // mapping goes on and only the lost part is missing from the outputs.
   resumed.reset();
-  std::filesystem::resize_file(dir + "/trajectory.tum", mark.trajectory_bytes / 2);
+  std::filesystem::resize_file(dir + "/odometry.bin", 1000);
   auto restarted = TrajectoryArchive::Open(dir, &mark, &warning, &error);
   ASSERT_NE(restarted, nullptr) << error;
-  EXPECT_NE(warning.find("trajectory.tum"), std::string::npos) << warning;
+  EXPECT_NE(warning.find("odometry.bin"), std::string::npos) << warning;
   EXPECT_NE(warning.find("starts over"), std::string::npos) << warning;
   EXPECT_EQ(restarted->mark().nodes_bytes, 0u);
-  EXPECT_EQ(std::filesystem::file_size(dir + "/nodes.tum"), 0u);
-  ASSERT_TRUE(restarted->ReadWholeRun(kept, record_at_mark, &trajectory, &nodes, &odometry, &error))
-      << error;
-  ASSERT_FALSE(trajectory.empty());
-  EXPECT_GT(trajectory.front().stamp_s, mark.last_output_stamp_s);
+  EXPECT_EQ(std::filesystem::file_size(dir + "/nodes.bin"), 0u);
+  ASSERT_TRUE(restarted->ReadWholeRun(kept, rest, &nodes, &odometry, &error)) << error;
   EXPECT_EQ(nodes.size(), kept.size());
+  EXPECT_EQ(odometry.size(), rest.size());
 }
 
-TEST(TrajectoryArchiveTest, NothingToArchiveWritesNothing) {
+TEST(TrajectoryArchiveTest, DamagedFilesAreErrorsNamingTheFile) {
+  const DriveRun run = MakeRun();
+  const std::string dir = TempDir("archive_damaged");
   std::string error, warning;
-  auto archive = TrajectoryArchive::Open(TempDir("archive_empty"), nullptr, &warning, &error);
+  auto archive = TrajectoryArchive::Open(dir, nullptr, &warning, &error);
   ASSERT_NE(archive, nullptr) << error;
-  std::vector<sensor::OdometryData> record = {{1.0, common::Rigid2d::Identity()}};
+  std::vector<sensor::OdometryData> record(run.odometry.begin(), run.odometry.begin() + 3);
   ASSERT_TRUE(archive->Append({}, &record, &error)) << error;
-  EXPECT_EQ(record.size(), 1u);
-  EXPECT_EQ(archive->mark().trajectory_bytes, 0u);
-  EXPECT_FALSE(archive->mark().has_last_node);
+  // A NaN where a stamp was (bytes 32..39: the second sample's stamp).
+  {
+    std::fstream file(dir + "/odometry.bin", std::ios::in | std::ios::out | std::ios::binary);
+    file.seekp(32);
+    const double nan = std::nan("");
+    file.write(reinterpret_cast<const char*>(&nan), sizeof(nan));
+  }
+  std::vector<TimedPose2d> nodes;
+  std::vector<sensor::OdometryData> odometry;
+  EXPECT_FALSE(archive->ReadWholeRun({}, {}, &nodes, &odometry, &error));
+  EXPECT_NE(error.find("odometry.bin"), std::string::npos) << error;
+  EXPECT_NE(error.find("not finite"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -161,9 +161,9 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   ExpectSamePoses(original.NodePoses(), restored->NodePoses());
 }
 
-// Archiving the trimmed front of the graph takes memory, not information: the archived nodes
-// followed by the ones kept are the run without archiving, and a state exported after
-// archiving restores and continues exactly.
+// Taking trimmed nodes out of the graph takes memory, not information: the nodes taken merged
+// with the ones kept are the run without taking any, and a state exported after taking them
+// restores and continues exactly.
 TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
   const std::vector<Input> input = LoopInput(2.2);
   common::InlineExecutor executor;
@@ -180,22 +180,22 @@ TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
     const size_t end = std::min(split, begin + 20);
     Feed(input, begin, end, &plain);
     Feed(input, begin, end, &archiving);
-    for (const auto& node : archiving.pose_graph().TakeTrimmedPrefix(input[end - 1].scan.stamp_s)) {
+    for (const auto& node : archiving.pose_graph().TakeTrimmedNodes()) {
       archived.push_back({node.stamp_s, node.T_map_node});
     }
   }
-  const int first_node = archiving.pose_graph().first_node();
-  ASSERT_GT(first_node, 0);
-  ASSERT_EQ(static_cast<int>(archived.size()), first_node);
-  EXPECT_EQ(archiving.pose_graph().Snapshot()->first_node, first_node);
-  // Nothing later than the stamp given is taken.
-  EXPECT_TRUE(archiving.pose_graph().TakeTrimmedPrefix(-1.0).empty());
+  ASSERT_GT(archived.size(), 20u);
+  const auto held = archiving.pose_graph().Snapshot();
+  EXPECT_EQ(held->node_ids.size() + archived.size(),
+            static_cast<size_t>(archiving.pose_graph().stats().nodes));
+  EXPECT_TRUE(archiving.pose_graph().TakeTrimmedNodes().empty());
 
   const MapBuilderState2D state = archiving.ExportState();
-  EXPECT_EQ(state.pose_graph.first_node, first_node);
+  EXPECT_EQ(state.pose_graph.nodes.size(), held->node_ids.size());
+  EXPECT_EQ(state.pose_graph.nodes.back().index, held->node_ids.back());
   EXPECT_LT(state.pose_graph.nodes.size(), plain.ExportState().pose_graph.nodes.size());
   auto restored = MapBuilder2D::Restore(options, &executor, state);
-  EXPECT_EQ(restored->pose_graph().first_node(), first_node);
+  EXPECT_EQ(restored->pose_graph().Snapshot()->node_ids, held->node_ids);
   Feed(input, split, input.size(), &plain);
   Feed(input, split, input.size(), &archiving);
   Feed(input, split, input.size(), restored.get());
@@ -207,6 +207,8 @@ TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
             plain.pose_graph().stats().loop_closures_found);
   auto whole = archived;
   for (const auto& node : archiving.NodePoses()) whole.push_back(node);
+  std::sort(whole.begin(), whole.end(),
+            [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
   ExpectSamePoses(plain.NodePoses(), whole);
   ExpectSamePoses(archiving.NodePoses(), restored->NodePoses());
 }

@@ -54,10 +54,9 @@ class Engine {
   // saved with it. Replaces the builder and refuses input older than the state's last node.
   void Restore(const pose_graph::MapBuilderState2D& state,
                std::vector<sensor::OdometryData> odometry);
-  // Before Start(): where settled trajectory goes at each checkpoint, so that memory does not
-  // follow the run's length: trimmed nodes at the front of the graph and the odometry they
-  // settle are moved out of memory into `archive` (io/trajectory_archive.h), and WriteOutputs
-  // reads them back. Runs without odometry archive nothing.
+  // Before Start(): at each checkpoint, trimmed nodes and the odometry record move out of
+  // memory into `archive` (io/trajectory_archive.h), so that memory does not follow the run's
+  // length; WriteOutputs reads them back.
   void SetTrajectoryArchive(std::unique_ptr<io::TrajectoryArchive> archive) {
     archive_ = std::move(archive);
   }
@@ -98,7 +97,7 @@ class Engine {
   void RunRgbd();
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
-  // Moves settled nodes and odometry into archive_ (SLAM thread, executor idle).
+  // Moves trimmed nodes and the odometry record into archive_ (SLAM thread, executor idle).
   void ArchiveSettled();
   void PublishSubmapsAndLoops(double stamp_s);
   void ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result);

@@ -25,8 +25,8 @@ struct RunOutputs {
   // Optional (null: no cloud outputs); after Finish(). Cloud files are written only if it
   // bound at least one frame.
   const cloud::CloudMapper* cloud_mapper = nullptr;
-  // Optional: the run's settled part (fusemapd); the trajectory files then cover the whole run,
-  // the archive followed by the builder's nodes and `odometry`.
+  // Optional (fusemapd): what the run moved out of memory; the trajectory files then cover the
+  // archived nodes and odometry as well as the builder's nodes and `odometry`.
   const TrajectoryArchive* archive = nullptr;
 };
 

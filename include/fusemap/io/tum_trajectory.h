@@ -19,9 +19,6 @@ bool ReadTumTrajectory(std::istream& in, const std::string& origin, eval::Trajec
 bool ReadTumTrajectoryFile(const std::string& path, eval::Trajectory* trajectory,
                            std::string* error);
 
-// The lines WriteTumTrajectoryFile writes for `trajectory`, without its header comment.
-std::string FormatTumLines(const eval::Trajectory& trajectory);
-
 // Writes with enough digits (stamps to 1 µs of absolute UNIX time, poses to 1e-9) to round-trip.
 bool WriteTumTrajectoryFile(const std::string& path, const eval::Trajectory& trajectory,
                             std::string* error);

@@ -52,8 +52,9 @@ struct PendingSearch2D {
 
 struct PoseGraphState2D;
 
-// A node removed from the graph by PoseGraph2D::TakeTrimmedPrefix, with its final pose.
+// A node removed from the graph by PoseGraph2D::TakeTrimmedNodes, with its final pose.
 struct ArchivedNode2D {
+  int node = 0;
   double stamp_s = 0.0;
   common::Rigid2d T_map_node;
 };
@@ -64,10 +65,9 @@ struct ArchivedNode2D {
 // executor; with an InlineExecutor every call completes synchronously and runs are
 // reproducible. With the overlapping submaps trimmer on, submaps and nodes may be trimmed after
 // an optimisation: they keep their index and last pose, but their data is released and they
-// take no further part. Trimmed nodes at the front can then be taken out of memory altogether
-// (TakeTrimmedPrefix), so that a graph that keeps trimming holds what the map needs, not what
-// the run has seen; node indices stay global (the first node kept is first_node()). All public
-// methods are thread-safe.
+// take no further part. Trimmed nodes can then be taken out of memory altogether
+// (TakeTrimmedNodes), so that a graph that keeps trimming holds what the map needs, not what the
+// run has seen; node indices stay those given by AddNode. All public methods are thread-safe.
 class PoseGraph2D {
  public:
   struct Stats {
@@ -106,18 +106,15 @@ class PoseGraph2D {
   void RunFinalOptimization();
 
   // Current global estimate: T_map_local applied to local poses of nodes not yet optimised.
-  // Its T_map_nodes start at first_node().
+  // Its T_map_nodes are those of the nodes still held (node_ids).
   std::shared_ptr<const PoseGraphSnapshot> Snapshot() const;
   // By index; null for trimmed submaps.
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
-  // Stamps of the nodes still held, from first_node().
+  // Stamps of the nodes still held, oldest first.
   std::vector<double> node_stamps_s() const;
-  // Index of the oldest node still held (0 until TakeTrimmedPrefix removes some).
-  int first_node() const;
-  // Removes the run of trimmed nodes at the front of the graph, up to the first one stamped
-  // after `max_stamp_s`, and returns them oldest first. Their poses are final: trimmed nodes are
-  // in no optimisation problem.
-  std::vector<ArchivedNode2D> TakeTrimmedPrefix(double max_stamp_s);
+  // Removes every trimmed node from the graph and returns them oldest first. Their poses are
+  // final: trimmed nodes are in no optimisation problem.
+  std::vector<ArchivedNode2D> TakeTrimmedNodes();
   common::Rigid2d T_map_local() const;
   // The index of a submap a node was inserted into, or -1 if no node has reached it yet.
   int SubmapIndex(const mapping::Submap2D* submap) const;
@@ -138,6 +135,7 @@ class PoseGraph2D {
 
  private:
   struct NodeData {
+    int index;  // as AddNode returned it
     double stamp_s;
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;
@@ -168,22 +166,22 @@ class PoseGraph2D {
   void MaybeTrim();
   // Drops `submaps`, their constraints, and the nodes left in no remaining submap.
   void TrimLocked(const std::vector<int>& submaps);
-  // Nodes by global index; `node` must be held (>= first_node_).
-  NodeData& NodeLocked(int node) { return nodes_[node - first_node_]; }
-  common::Rigid2d& T_map_node_locked(int node) { return T_map_nodes_[node - first_node_]; }
-  // Trimmed, or archived by TakeTrimmedPrefix.
+  // Where node `node` is in nodes_, -1 once TakeTrimmedNodes removed it.
+  int SlotLocked(int node) const;
+  // `node` must be held.
+  NodeData& NodeLocked(int node) { return nodes_[SlotLocked(node)]; }
+  // Trimmed, or removed by TakeTrimmedNodes.
   bool NodeGoneLocked(int node) const {
-    return node < first_node_ || nodes_[node - first_node_].trimmed;
+    const int slot = SlotLocked(node);
+    return slot < 0 || nodes_[slot].trimmed;
   }
-  int EndNodeLocked() const { return first_node_ + static_cast<int>(nodes_.size()); }
 
   const PoseGraphOptions2D options_;
   common::Executor* const executor_;
 
   mutable std::mutex mutex_;
-  // Nodes first_node_, first_node_ + 1, ...; the ones before were archived.
+  // The nodes held, by increasing index (stats_.nodes were added in all).
   std::vector<NodeData> nodes_;              // guarded by mutex_
-  int first_node_ = 0;                       // guarded by mutex_
   std::vector<SubmapData> submaps_;          // guarded by mutex_
   std::map<const mapping::Submap2D*, int> submap_index_;  // guarded by mutex_
   std::vector<common::Rigid2d> T_map_nodes_;    // guarded by mutex_, like nodes_
@@ -204,9 +202,11 @@ class PoseGraph2D {
 
 // Everything PoseGraph2D holds besides its options and the submap grids, as plain values
 // (checkpoints). Submaps are numbered as in PoseGraph2D; their grids travel separately. Nodes
-// (and T_map_nodes) start at first_node; constraints and searches use global node indices.
+// (and T_map_nodes) are the ones held, by increasing index; constraints and searches name them
+// by that index.
 struct PoseGraphState2D {
   struct Node {
+    int index = 0;
     double stamp_s = 0.0;
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;
@@ -219,7 +219,6 @@ struct PoseGraphState2D {
     bool matcher_ready = false;  // precomputed, and the searches of all nodes were queued
     long sampler_pulses = 0;
   };
-  int first_node = 0;
   std::vector<Node> nodes;
   std::vector<Submap> submaps;
   std::vector<common::Rigid2d> T_map_nodes;
