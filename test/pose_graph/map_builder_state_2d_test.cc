@@ -31,6 +31,16 @@ MapBuilderOptions2D TestOptions(double sampling_ratio) {
   return options;
 }
 
+// The small room: each new submap covers the older ones again, so trimming goes on all the time.
+MapBuilderOptions2D TrimmingOptions() {
+  MapBuilderOptions2D options = TestOptions(0.3);
+  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
+  trimmer.fresh_submaps_count = 1;
+  trimmer.min_covered_area_m2 = 0.5;
+  trimmer.min_added_submaps_count = 2;
+  return options;
+}
+
 struct Input {
   sensor::OdometryData odometry;
   sensor::LaserScan scan;
@@ -132,11 +142,7 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   const std::vector<Input> input = LoopInput(2.2);
   const size_t split = input.size() * 2 / 3;
   common::InlineExecutor executor;
-  MapBuilderOptions2D options = TestOptions(0.3);
-  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
-  trimmer.fresh_submaps_count = 1;
-  trimmer.min_covered_area_m2 = 0.5;
-  trimmer.min_added_submaps_count = 2;
+  const MapBuilderOptions2D options = TrimmingOptions();
   MapBuilder2D original(options, &executor);
   Feed(input, 0, split, &original);
   const MapBuilderState2D state = original.ExportState();
@@ -167,11 +173,7 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
 TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
   const std::vector<Input> input = LoopInput(2.2);
   common::InlineExecutor executor;
-  MapBuilderOptions2D options = TestOptions(0.3);
-  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
-  trimmer.fresh_submaps_count = 1;
-  trimmer.min_covered_area_m2 = 0.5;
-  trimmer.min_added_submaps_count = 2;
+  const MapBuilderOptions2D options = TrimmingOptions();
   MapBuilder2D plain(options, &executor);
   MapBuilder2D archiving(options, &executor);
   std::vector<MapBuilder2D::TimedPose2d> archived;

@@ -39,7 +39,7 @@ constexpr char kUsage[] =
     "everything queued, runs the final optimisation and writes DIR/trajectory.tum, DIR/nodes.tum,\n"
     "DIR/map.pgm, DIR/map.yaml and DIR/map.png (as fusemap_offline; with RGB-D frames and\n"
     "cloud.enabled also DIR/cloud.ply/.pcd, DIR/cloud_removed.ply, DIR/octomap.bt/.ot and\n"
-    "DIR/cloud.png, while changed cloud regions go out on FUSEMAP_CLOUD_REGION as\n"
+    "DIR/cloud.png, while changed cloud regions go out on daemon.cloud_region_channel as\n"
     "fusemap_lcm.cloud_region_t, at most every 0.5 s). Its state goes to\n"
     "DIR/checkpoint.fmck every daemon.checkpoint_period_s and at shutdown (the one before is\n"
     "kept as DIR/checkpoint.fmck.prev). Each checkpoint first moves the odometry record and\n"
@@ -169,7 +169,8 @@ int Run(const Args& args) {
        options.health_channel},
       !args.quiet);
   // Changed regions of the coloured map (cloud.enabled), for a viewer to follow.
-  daemon::LcmCloudRegionPublisher cloud_publisher(input.publish_handle(), "FUSEMAP_CLOUD_REGION");
+  daemon::LcmCloudRegionPublisher cloud_publisher(input.publish_handle(),
+                                                  options.cloud_region_channel);
   auto engine = std::make_unique<daemon::Engine>(slam, options, args.threads, policy, &publisher,
                                                  &log);
   engine->SetCloudRegionPublisher(&cloud_publisher);
