@@ -184,12 +184,19 @@ void Engine::MaybeCheckpoint(bool force) {
 
 void Engine::ArchiveSettled() {
   if (!archive_) return;
-  const auto nodes = builder_->pose_graph().TakeTrimmedNodes();
+  // Nodes leave the graph only once they are on disk: a failed append (a full disk) keeps
+  // them, and the odometry, in memory for the next try.
+  const auto nodes = builder_->pose_graph().TrimmedNodes();
   std::string error;
   if (!archive_->Append(nodes, &odometry_, &error)) {
     ++archive_failures_;
     if (log_ != nullptr) log_->Report("trajectory archive", error);
+    return;
   }
+  std::vector<int> indices;
+  indices.reserve(nodes.size());
+  for (const auto& node : nodes) indices.push_back(node.node);
+  builder_->pose_graph().RemoveTrimmedNodes(indices);
 }
 
 void Engine::RunRgbd() {

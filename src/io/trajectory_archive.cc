@@ -155,8 +155,17 @@ bool TrajectoryArchive::Append(const std::vector<pose_graph::ArchivedNode2D>& no
     PutPose(node.stamp_s, node.T_map_node, &node_out);
   }
   for (const auto& sample : *odometry) PutPose(sample.stamp_s, sample.pose, &odometry_out);
+  const TrajectoryArchiveMark before = mark_;
   if (!files_->Append(kNodes, node_bytes, &mark_.nodes_bytes, error) ||
       !files_->Append(kOdometry, odometry_bytes, &mark_.odometry_bytes, error)) {
+    mark_ = before;
+    const std::uint64_t lengths[2] = {before.nodes_bytes, before.odometry_bytes};
+    for (int i = 0; i < 2; ++i) {
+      if (::ftruncate(files_->fd[i], static_cast<off_t>(lengths[i])) != 0 ||
+          ::lseek(files_->fd[i], 0, SEEK_END) < 0) {
+        *error += "; and " + Errno(files_->path[i], "cannot cut back");
+      }
+    }
     return false;
   }
   if (!odometry->empty()) mark_.last_odometry_stamp_s = odometry->back().stamp_s;

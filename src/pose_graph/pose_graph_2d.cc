@@ -405,15 +405,25 @@ int PoseGraph2D::SlotLocked(int node) const {
   return it != nodes_.end() && it->index == node ? static_cast<int>(it - nodes_.begin()) : -1;
 }
 
-std::vector<ArchivedNode2D> PoseGraph2D::TakeTrimmedNodes() {
+std::vector<ArchivedNode2D> PoseGraph2D::TrimmedNodes() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  std::vector<ArchivedNode2D> taken;
+  std::vector<ArchivedNode2D> trimmed;
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].trimmed) trimmed.push_back({nodes_[i].index, nodes_[i].stamp_s, T_map_nodes_[i]});
+  }
+  return trimmed;
+}
+
+void PoseGraph2D::RemoveTrimmedNodes(const std::vector<int>& nodes) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<bool> remove(nodes_.size(), false);
+  for (int node : nodes) {
+    const int slot = SlotLocked(node);
+    if (slot >= 0 && nodes_[slot].trimmed) remove[slot] = true;
+  }
   size_t kept = 0;
   for (size_t i = 0; i < nodes_.size(); ++i) {
-    if (nodes_[i].trimmed) {
-      taken.push_back({nodes_[i].index, nodes_[i].stamp_s, T_map_nodes_[i]});
-      continue;
-    }
+    if (remove[i]) continue;
     if (kept != i) {
       nodes_[kept] = std::move(nodes_[i]);
       T_map_nodes_[kept] = T_map_nodes_[i];
@@ -422,7 +432,6 @@ std::vector<ArchivedNode2D> PoseGraph2D::TakeTrimmedNodes() {
   }
   nodes_.resize(kept);
   T_map_nodes_.resize(kept);
-  return taken;
 }
 
 common::Rigid2d PoseGraph2D::T_map_local() const {

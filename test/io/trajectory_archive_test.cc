@@ -1,6 +1,9 @@
 #include "fusemap/io/trajectory_archive.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+
+#include <csignal>
 
 #include <cmath>
 #include <filesystem>
@@ -163,6 +166,45 @@ TEST(TrajectoryArchiveTest, DamagedFilesAreErrorsNamingTheFile) {
   EXPECT_FALSE(archive->ReadWholeRun({}, {}, &nodes, &odometry, &error));
   EXPECT_NE(error.find("odometry.bin"), std::string::npos) << error;
   EXPECT_NE(error.find("not finite"), std::string::npos) << error;
+}
+
+// A full disk, played by a file size limit: the failed append leaves files, mark and record as
+// they were, and the same append goes through once there is room.
+TEST(TrajectoryArchiveTest, FailedAppendChangesNothingAndCanBeRetried) {
+  const DriveRun run = MakeRun();
+  const std::string dir = TempDir("archive_full");
+  std::string error, warning;
+  auto archive = TrajectoryArchive::Open(dir, nullptr, &warning, &error);
+  ASSERT_NE(archive, nullptr) << error;
+  std::vector<sensor::OdometryData> record(run.odometry.begin(), run.odometry.begin() + 10);
+  ASSERT_TRUE(archive->Append({{0, run.nodes[0].stamp_s, run.nodes[0].pose}}, &record, &error));
+  const TrajectoryArchiveMark before = archive->mark();
+
+  record.assign(run.odometry.begin() + 10, run.odometry.begin() + 200);
+  const std::vector<pose_graph::ArchivedNode2D> nodes = {{1, run.nodes[1].stamp_s, run.nodes[1].pose}};
+  std::signal(SIGXFSZ, SIG_IGN);
+  rlimit saved{};
+  ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);
+  rlimit small = saved;
+  small.rlim_cur = before.odometry_bytes + 1000;  // room for the node, not for 190 samples
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &small), 0);
+  const bool appended = archive->Append(nodes, &record, &error);
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &saved), 0);
+  EXPECT_FALSE(appended);
+  EXPECT_NE(error.find("odometry.bin"), std::string::npos) << error;
+  EXPECT_EQ(archive->mark().nodes_bytes, before.nodes_bytes);
+  EXPECT_EQ(archive->mark().odometry_bytes, before.odometry_bytes);
+  EXPECT_EQ(std::filesystem::file_size(dir + "/nodes.bin"), before.nodes_bytes);
+  EXPECT_EQ(std::filesystem::file_size(dir + "/odometry.bin"), before.odometry_bytes);
+  EXPECT_EQ(record.size(), 190u);
+
+  ASSERT_TRUE(archive->Append(nodes, &record, &error)) << error;
+  std::vector<TimedPose2d> all_nodes;
+  std::vector<sensor::OdometryData> all_odometry;
+  ASSERT_TRUE(archive->ReadWholeRun({}, {}, &all_nodes, &all_odometry, &error)) << error;
+  ExpectBitForBit(std::vector<TimedPose2d>(run.nodes.begin(), run.nodes.begin() + 2), all_nodes);
+  ExpectBitForBit(std::vector<sensor::OdometryData>(run.odometry.begin(), run.odometry.begin() + 200),
+                  all_odometry);
 }
 
 }  // namespace

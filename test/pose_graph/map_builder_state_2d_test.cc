@@ -182,15 +182,21 @@ TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
     const size_t end = std::min(split, begin + 20);
     Feed(input, begin, end, &plain);
     Feed(input, begin, end, &archiving);
-    for (const auto& node : archiving.pose_graph().TakeTrimmedNodes()) {
+    std::vector<int> indices;
+    for (const auto& node : archiving.pose_graph().TrimmedNodes()) {
       archived.push_back({node.stamp_s, node.T_map_node});
+      indices.push_back(node.node);
     }
+    archiving.pose_graph().RemoveTrimmedNodes(indices);
   }
   ASSERT_GT(archived.size(), 20u);
   const auto held = archiving.pose_graph().Snapshot();
   EXPECT_EQ(held->node_ids.size() + archived.size(),
             static_cast<size_t>(archiving.pose_graph().stats().nodes));
-  EXPECT_TRUE(archiving.pose_graph().TakeTrimmedNodes().empty());
+  EXPECT_TRUE(archiving.pose_graph().TrimmedNodes().empty());
+  // Nodes still in use are never let go.
+  archiving.pose_graph().RemoveTrimmedNodes(held->node_ids);
+  EXPECT_EQ(archiving.pose_graph().Snapshot()->node_ids, held->node_ids);
 
   const MapBuilderState2D state = archiving.ExportState();
   EXPECT_EQ(state.pose_graph.nodes.size(), held->node_ids.size());

@@ -24,7 +24,7 @@ struct TrajectoryArchiveMark {
 };
 
 // The part of a long run that the daemon no longer needs in memory, on disk: nodes the pose
-// graph has trimmed and let go (PoseGraph2D::TakeTrimmedNodes; their poses are final) and the
+// graph has trimmed (PoseGraph2D::TrimmedNodes; their poses are final) and the
 // odometry record, which is only needed for the trajectory output. Two append-only files of
 // little-endian binary records in one folder, so values come back bit for bit:
 //   nodes.bin     i32 node index, f64 stamp_s, f64 x_m, f64 y_m, f64 angle_rad (36 bytes)
@@ -47,7 +47,8 @@ class TrajectoryArchive {
   TrajectoryArchive& operator=(const TrajectoryArchive&) = delete;
 
   // Appends `nodes` and the samples of *odometry (time-ordered, following those appended
-  // before), then clears *odometry.
+  // before), then clears *odometry. On failure the files are cut back to where they were and
+  // nothing changes, so the same call can be tried again.
   bool Append(const std::vector<pose_graph::ArchivedNode2D>& nodes,
               std::vector<sensor::OdometryData>* odometry, std::string* error);
 

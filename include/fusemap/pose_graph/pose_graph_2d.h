@@ -52,7 +52,7 @@ struct PendingSearch2D {
 
 struct PoseGraphState2D;
 
-// A node removed from the graph by PoseGraph2D::TakeTrimmedNodes, with its final pose.
+// A trimmed node with its final pose (PoseGraph2D::TrimmedNodes).
 struct ArchivedNode2D {
   int node = 0;
   double stamp_s = 0.0;
@@ -66,7 +66,7 @@ struct ArchivedNode2D {
 // reproducible. With the overlapping submaps trimmer on, submaps and nodes may be trimmed after
 // an optimisation: they keep their index and last pose, but their data is released and they
 // take no further part. Trimmed nodes can then be taken out of memory altogether
-// (TakeTrimmedNodes), so that a graph that keeps trimming holds what the map needs, not what the
+// (RemoveTrimmedNodes), so that a graph that keeps trimming holds what the map needs, not what the
 // run has seen; node indices stay those given by AddNode. All public methods are thread-safe.
 class PoseGraph2D {
  public:
@@ -112,9 +112,11 @@ class PoseGraph2D {
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
   // Stamps of the nodes still held, oldest first.
   std::vector<double> node_stamps_s() const;
-  // Removes every trimmed node from the graph and returns them oldest first. Their poses are
-  // final: trimmed nodes are in no optimisation problem.
-  std::vector<ArchivedNode2D> TakeTrimmedNodes();
+  // The trimmed nodes still held, oldest first. Their poses are final: trimmed nodes are in no
+  // optimisation problem.
+  std::vector<ArchivedNode2D> TrimmedNodes() const;
+  // Lets go of the trimmed nodes among `nodes` (indices), once whoever wants them has them.
+  void RemoveTrimmedNodes(const std::vector<int>& nodes);
   common::Rigid2d T_map_local() const;
   // The index of a submap a node was inserted into, or -1 if no node has reached it yet.
   int SubmapIndex(const mapping::Submap2D* submap) const;
@@ -166,11 +168,11 @@ class PoseGraph2D {
   void MaybeTrim();
   // Drops `submaps`, their constraints, and the nodes left in no remaining submap.
   void TrimLocked(const std::vector<int>& submaps);
-  // Where node `node` is in nodes_, -1 once TakeTrimmedNodes removed it.
+  // Where node `node` is in nodes_, -1 once RemoveTrimmedNodes removed it.
   int SlotLocked(int node) const;
   // `node` must be held.
   NodeData& NodeLocked(int node) { return nodes_[SlotLocked(node)]; }
-  // Trimmed, or removed by TakeTrimmedNodes.
+  // Trimmed, or removed by RemoveTrimmedNodes.
   bool NodeGoneLocked(int node) const {
     const int slot = SlotLocked(node);
     return slot < 0 || nodes_[slot].trimmed;
