@@ -99,8 +99,15 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 
   const std::vector<Candidate2D> lowest_resolution_candidates =
       ComputeLowestResolutionCandidates(scans, params, with_prior);
-  const Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
-                                          grids_.max_depth(), min_score, with_prior);
+  // With a prior, the threshold is on the match itself: the prior only chooses among matches,
+  // so a good match far from the centre is not rejected for being far.
+  Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
+                                    grids_.max_depth(), with_prior ? 0.0 : min_score, with_prior);
+  if (with_prior) {
+    std::vector<Candidate2D> leaf = {best};
+    ScoreCandidates(grids_.Get(0), scans, false, &leaf);
+    best.score = leaf.front().score;
+  }
   if (!(best.score > min_score)) return false;
   *score = best.score;
   *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),

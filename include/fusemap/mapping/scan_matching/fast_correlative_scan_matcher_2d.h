@@ -23,9 +23,10 @@ struct FastCorrelativeScanMatcherOptions2D {
   // The threshold callers (the constraint builder) pass to Match for local searches.
   double min_score = 0.55;
   // Prior on the search centre for Match (not MatchFullSubmap), as in the real-time
-  // correlative matcher: a candidate's score is multiplied by exp(-(w_t * d_m + w_r * |a_rad|)^2)
-  // for its offset d_m and turn a_rad from the centre, and min_score applies to that product.
-  // 0 and 0 (the defaults) score as without a prior.
+  // correlative matcher: the search maximises score * exp(-(w_t * d_m + w_r * |a_rad|)^2) for
+  // a candidate's offset d_m and turn a_rad from the centre. min_score and the score returned
+  // are the chosen candidate's own score, without the prior. 0 and 0 (the defaults) search as
+  // without a prior.
   double translation_delta_cost_weight = 0.0;
   double rotation_delta_cost_weight = 0.0;
 
