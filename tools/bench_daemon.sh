@@ -63,7 +63,13 @@ grep '^fusemapd: t=' "$WORK/long.err" | awk -v every=300 '
     for (i = 3; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
     m = int((t - t0) / every)
     if (m > last) { last = m; printf "sim %5.0f min: rss %s nodes %s submaps %s time_resets %s\n",
-                    (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"] } }
+                    (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"] }
+    # Least-squares slope of RSS over simulated time once the hall is mapped (after 15 min).
+    if (t - t0 >= 900) { h = (t - t0) / 3600; r = v["rss"] + 0; n++; sx += h; sy += r
+                         sxx += h * h; sxy += h * r } }
   END { printf "sim %5.0f min (end): rss %s nodes %s submaps %s time_resets %s\n",
-        (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"] }'
+        (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"]
+        if (n > 2 && n * sxx - sx * sx > 0)
+          printf "rss trend from 15 min on: %+.1f MB per hour of operation (%d health samples)\n",
+                 (n * sxy - sx * sy) / (n * sxx - sx * sx), n }'
 grep -v '^fusemapd: t=' "$WORK/long.err" | grep -v checkpoint | tail -3

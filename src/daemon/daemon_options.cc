@@ -9,7 +9,7 @@ bool DaemonOptions::IsValid(std::string* error) const {
     return false;
   };
   if (submap_list_channel.empty() || loop_closure_channel.empty() ||
-      health_channel.empty()) {
+      health_channel.empty() || cloud_region_channel.empty()) {
     return fail("output channel names must not be empty");
   }
   if (sensor_queue_size < 1 || rgbd_queue_size < 1) return fail("queue sizes must be >= 1");
@@ -31,6 +31,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("submap_list_channel", &options.submap_list_channel);
   reader.Get("loop_closure_channel", &options.loop_closure_channel);
   reader.Get("health_channel", &options.health_channel);
+  reader.Get("cloud_region_channel", &options.cloud_region_channel);
   reader.Get("sensor_queue_size", &options.sensor_queue_size);
   reader.Get("rgbd_queue_size", &options.rgbd_queue_size);
   reader.Get("submap_list_rate_hz", &options.submap_list_rate_hz);

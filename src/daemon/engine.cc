@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <limits>
 #include <utility>
 #include <variant>
 
@@ -56,14 +57,15 @@ void Engine::ConnectBuilder() {
   });
 }
 
-void Engine::Restore(const pose_graph::MapBuilderState2D& state) {
+void Engine::Restore(const pose_graph::MapBuilderState2D& state,
+                     std::vector<sensor::OdometryData> odometry) {
   std::lock_guard<std::mutex> lock(finish_mutex_);
   assert(!started_);
   builder_ = pose_graph::MapBuilder2D::Restore(slam_.map_builder, executor_.get(), state);
   ConnectBuilder();
   intake_.SeedStamps(LastStateStamp(state));
   last_stamp_s_ = std::max(0.0, LastStateStamp(state));
-  resumed_ = true;
+  odometry_ = std::move(odometry);
 }
 
 Engine::~Engine() { Finish(); }
@@ -116,7 +118,10 @@ void Engine::Process(SensorMessage& message) {
   } else if (auto* odometry = std::get_if<sensor::OdometryData>(&message.data)) {
     // As fusemap_offline: odometry that goes back in time is skipped, the rest recorded for
     // the densified trajectory. (Intake already rejects those; this keeps the two paths equal.)
-    if (!odometry_.empty() && odometry->stamp_s < odometry_.back().stamp_s) return;
+    const double last_s = !odometry_.empty() ? odometry_.back().stamp_s
+                          : archive_               ? archive_->mark().last_odometry_stamp_s
+                                                   : -std::numeric_limits<double>::infinity();
+    if (odometry->stamp_s < last_s) return;
     odometry_.push_back(*odometry);
     builder_->AddOdometry(*odometry);
   } else if (auto* imu = std::get_if<sensor::ImuData>(&message.data)) {
@@ -166,10 +171,24 @@ void Engine::MaybeCheckpoint(bool force) {
   }
   last_checkpoint_ = now;
   executor_->WaitIdle();
+  ArchiveSettled();
+  RunRecord record;
+  record.odometry = &odometry_;
+  if (archive_) record.archive = &archive_->mark();
   std::string error;
-  if (!checkpointer_->Save(*builder_, &error)) {
+  if (!checkpointer_->Save(*builder_, record, &error)) {
     ++checkpoint_failures_;
     if (log_ != nullptr) log_->Report("checkpoint", error);
+  }
+}
+
+void Engine::ArchiveSettled() {
+  if (!archive_) return;
+  const auto nodes = builder_->pose_graph().TakeTrimmedNodes();
+  std::string error;
+  if (!archive_->Append(nodes, &odometry_, &error)) {
+    ++archive_failures_;
+    if (log_ != nullptr) log_->Report("trajectory archive", error);
   }
 }
 
@@ -283,9 +302,9 @@ bool Engine::WriteOutputs(const std::string& dir, std::string* error,
   run.odometry = &odometry_;
   run.map_resolution_m = slam_.map_builder.local_slam.submaps.resolution_m;
   run.cloud_mapper = cloud_mapper();
+  run.archive = archive_.get();
   io::RunOutputsReport local_report;
-  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error) &&
-         (!resumed_ || WriteResumedTrajectory(*builder_, odometry_, dir, error));
+  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error);
 }
 
 }  // namespace daemon

@@ -16,11 +16,14 @@ std::string CheckpointPath(const std::string& out_dir) { return out_dir + "/chec
 FileCheckpointer::FileCheckpointer(std::string path, std::string options_yaml, LogLine log)
     : path_(std::move(path)), options_yaml_(std::move(options_yaml)), log_(std::move(log)) {}
 
-bool FileCheckpointer::Save(pose_graph::MapBuilder2D& builder, std::string* error) {
+bool FileCheckpointer::Save(pose_graph::MapBuilder2D& builder, const RunRecord& record,
+                            std::string* error) {
   const auto start = std::chrono::steady_clock::now();
   io::CheckpointContents contents;
   contents.options_yaml = options_yaml_;
   contents.state = builder.ExportState();
+  if (record.odometry != nullptr) contents.odometry = *record.odometry;
+  if (record.archive != nullptr) contents.archive = *record.archive;
   const int nodes = static_cast<int>(contents.state.pose_graph.nodes.size());
   std::error_code ec;
   const auto parent = std::filesystem::path(path_).parent_path();

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -14,6 +15,7 @@
 
 #include "fusemap/io/byte_buffer.h"
 #include "fusemap/io/map_builder_state_codec.h"
+#include "fusemap/io/submap_state_codec.h"
 
 namespace fusemap {
 namespace io {
@@ -68,6 +70,45 @@ bool FsyncDirectoryOf(const std::string& path, std::string* error) {
   return ok;
 }
 
+void EncodeOdometry(const std::vector<sensor::OdometryData>& odometry, ByteWriter* out) {
+  out->U64(odometry.size());
+  for (const auto& o : odometry) {
+    out->F64(o.stamp_s);
+    EncodeRigid2d(o.pose, out);
+  }
+}
+
+bool DecodeOdometry(ByteReader* in, std::vector<sensor::OdometryData>* odometry) {
+  size_t n = 0;
+  if (!in->Count(8 + 24, &n)) return false;
+  odometry->resize(n);
+  for (auto& o : *odometry) {
+    if (!in->F64(&o.stamp_s) || !DecodeRigid2d(in, &o.pose)) return false;
+    if (!std::isfinite(o.stamp_s)) {
+      in->Fail("odometry stamp is not finite");
+      return false;
+    }
+  }
+  for (size_t i = 1; i < n; ++i) {
+    if (!((*odometry)[i].stamp_s >= (*odometry)[i - 1].stamp_s)) {
+      in->Fail("odometry record goes back in time");
+      return false;
+    }
+  }
+  return true;
+}
+
+void EncodeArchiveMark(const TrajectoryArchiveMark& m, ByteWriter* out) {
+  out->U64(m.nodes_bytes);
+  out->U64(m.odometry_bytes);
+  out->F64(m.last_odometry_stamp_s);
+}
+
+bool DecodeArchiveMark(ByteReader* in, TrajectoryArchiveMark* m) {
+  return in->U64(&m->nodes_bytes) && in->U64(&m->odometry_bytes) &&
+         in->F64(&m->last_odometry_stamp_s);
+}
+
 }  // namespace
 
 std::string EncodeCheckpoint(const CheckpointContents& contents, bool compress_grids) {
@@ -76,6 +117,8 @@ std::string EncodeCheckpoint(const CheckpointContents& contents, bool compress_g
   writer.Bytes(contents.fusemap_version);
   writer.Bytes(contents.options_yaml);
   EncodeMapBuilderState(contents.state, compress_grids, &writer);
+  EncodeOdometry(contents.odometry, &writer);
+  EncodeArchiveMark(contents.archive, &writer);
 
   std::string file(kMagic, sizeof(kMagic));
   ByteWriter header(&file);
@@ -137,7 +180,9 @@ bool DecodeCheckpoint(const std::string& bytes, const std::string& name,
   ByteReader reader(payload, present);
   CheckpointContents decoded;
   if (!reader.Bytes(&decoded.fusemap_version) || !reader.Bytes(&decoded.options_yaml) ||
-      !DecodeMapBuilderState(&reader, &decoded.state)) {
+      !DecodeMapBuilderState(&reader, &decoded.state) ||
+      !DecodeOdometry(&reader, &decoded.odometry) ||
+      !DecodeArchiveMark(&reader, &decoded.archive)) {
     *error = name + ": invalid state " + reader.error();
     return false;
   }

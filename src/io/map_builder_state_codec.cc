@@ -1,5 +1,6 @@
 #include "fusemap/io/map_builder_state_codec.h"
 
+#include <algorithm>
 #include <string>
 
 #include "fusemap/io/submap_state_codec.h"
@@ -106,6 +107,7 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
   }
   out->U64(g.nodes.size());
   for (const auto& node : g.nodes) {
+    out->I32(node.index);
     out->F64(node.stamp_s);
     EncodeRigid2d(node.T_local_node, out);
     out->U64(node.cloud.size());
@@ -163,6 +165,20 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
   const pose_graph::PoseGraphState2D& g = state.pose_graph;
   const size_t num_submaps = state.submaps.size();
   const size_t num_nodes = g.nodes.size();
+  for (size_t n = 0; n < num_nodes; ++n) {
+    if (g.nodes[n].index < (n == 0 ? 0 : g.nodes[n - 1].index + 1) ||
+        g.nodes[n].index >= g.stats.nodes) {
+      in->Fail("node indices are not increasing within the nodes added");
+      return false;
+    }
+  }
+  // Constraints and searches name nodes by index; a trimmed node may have left the graph.
+  const auto held_node = [&g](int node) {
+    const auto it = std::lower_bound(
+        g.nodes.begin(), g.nodes.end(), node,
+        [](const pose_graph::PoseGraphState2D::Node& n, int index) { return n.index < index; });
+    return it != g.nodes.end() && it->index == node && !it->trimmed;
+  };
   if (g.submaps.size() != num_submaps || g.T_map_submaps.size() != num_submaps ||
       g.T_map_nodes.size() != num_nodes) {
     in->Fail("the numbers of submaps and nodes disagree between the state's parts");
@@ -177,9 +193,9 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     }
   }
   for (size_t s = 0; s < num_submaps; ++s) {
-    // Every pulse is one (node, submap) pair tried once, so there are at most num_nodes.
+    // Every pulse is one (node, submap) pair tried once, so there are at most as many as nodes.
     if (g.submaps[s].sampler_pulses < 0 ||
-        static_cast<uint64_t>(g.submaps[s].sampler_pulses) > num_nodes) {
+        g.submaps[s].sampler_pulses > g.stats.nodes) {
       in->Fail("submap " + std::to_string(s) + " sampler count is out of range");
       return false;
     }
@@ -193,16 +209,14 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     }
   }
   for (const auto& c : g.constraints) {
-    if (!InRange(c.submap, num_submaps) || !InRange(c.node, num_nodes) ||
-        g.submaps[c.submap].trimmed || g.nodes[c.node].trimmed) {
+    if (!InRange(c.submap, num_submaps) || !held_node(c.node) || g.submaps[c.submap].trimmed) {
       in->Fail("a constraint names a missing or trimmed node or submap");
       return false;
     }
   }
   for (const auto& search : g.searches_in_flight) {
-    if (!InRange(search.submap, num_submaps) || !InRange(search.node, num_nodes) ||
-        !g.submaps[search.submap].finished || g.submaps[search.submap].trimmed ||
-        g.nodes[search.node].trimmed) {
+    if (!InRange(search.submap, num_submaps) || !held_node(search.node) ||
+        !g.submaps[search.submap].finished || g.submaps[search.submap].trimmed) {
       in->Fail("a pending search names a missing, trimmed or unfinished node or submap");
       return false;
     }
@@ -230,7 +244,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   *state = pose_graph::MapBuilderState2D();
   // Minimum encoded sizes of list elements, for Count's allocation guard.
   constexpr size_t kSubmapBytes = 1;  // a trimmed one
-  constexpr size_t kNodeBytes = 8 + 24 + 8 + 8 + 1;
+  constexpr size_t kNodeBytes = 4 + 8 + 24 + 8 + 8 + 1;
   size_t n = 0;
   if (!in->Count(kSubmapBytes, &n)) return false;
   state->submaps.resize(n);
@@ -246,7 +260,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   if (!in->Count(kNodeBytes, &n)) return false;
   g.nodes.resize(n);
   for (auto& node : g.nodes) {
-    if (!in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
+    if (!in->I32(&node.index) || !in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
       return false;
     }
     node.cloud.resize(n);

@@ -144,10 +144,19 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
     *error = "cannot create output folder " + dir + ": " + ec.message();
     return false;
   }
-  const auto nodes = run.builder->NodePoses();
-  const auto dense = pose_graph::DensifyWithOdometry(nodes, *run.odometry);
+  auto nodes = run.builder->NodePoses();
+  std::vector<sensor::OdometryData> archived_odometry;
+  if (run.archive != nullptr) {
+    std::vector<pose_graph::MapBuilder2D::TimedPose2d> held = std::move(nodes);
+    if (!run.archive->ReadWholeRun(held, *run.odometry, &nodes, &archived_odometry, error)) {
+      return false;
+    }
+  }
+  const std::vector<sensor::OdometryData>& odometry =
+      run.archive != nullptr ? archived_odometry : *run.odometry;
+  const auto dense = pose_graph::DensifyWithOdometry(nodes, odometry);
   std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
-  for (const auto& o : *run.odometry) raw_odometry.push_back({o.stamp_s, o.pose});
+  for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
   const std::string out = dir + "/";
   if (!WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
       !WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||

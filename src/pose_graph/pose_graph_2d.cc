@@ -90,14 +90,14 @@ int PoseGraph2D::AddNode(
     const common::Rigid2d T_map_local = nodes_.empty()
                                             ? common::Rigid2d::Identity()
                                             : T_map_nodes_.back() * nodes_.back().T_local_node.inverse();
-    node = static_cast<int>(nodes_.size());
-    nodes_.push_back({stamp_s, T_local_node, filtered_cloud, {}, false});
+    node = stats_.nodes;
+    nodes_.push_back({node, stamp_s, T_local_node, filtered_cloud, {}, false});
     T_map_nodes_.push_back(T_map_local * T_local_node);
     ++stats_.nodes;
 
     for (const auto& submap : insertion_submaps) {
       const int s = SubmapIndexLocked(submap, T_map_local);
-      nodes_[node].inserted_into.push_back(s);
+      nodes_.back().inserted_into.push_back(s);
       Constraint2D constraint;
       constraint.submap = s;
       constraint.node = node;
@@ -138,13 +138,14 @@ int PoseGraph2D::AddNode(
 }
 
 void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
-  const NodeData& node_data = nodes_[node];
+  if (NodeGoneLocked(node)) return;
+  const NodeData& node_data = NodeLocked(node);
   SubmapData& submap_data = submaps_[submap];
-  if (node_data.trimmed) return;
   for (int s : node_data.inserted_into) {
     if (s == submap) return;
   }
-  const common::Rigid2d T_submap_node = T_map_submaps_[submap].inverse() * T_map_nodes_[node];
+  const common::Rigid2d T_submap_node =
+      T_map_submaps_[submap].inverse() * T_map_nodes_[SlotLocked(node)];
   if (T_submap_node.translation().norm() > options_.constraint_builder.max_constraint_distance_m) {
     return;
   }
@@ -157,7 +158,7 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
   const std::uint64_t id = next_search_id_++;
   searches_in_flight_[id] = search;
   auto matcher = submaps_[search.submap].matcher;
-  auto cloud = std::make_shared<const sensor::PointCloud2d>(nodes_[search.node].cloud);
+  auto cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
   pending_tasks_.push_back([this, matcher, cloud, search, id] {
     const auto start = std::chrono::steady_clock::now();
     double score = 0.0;
@@ -167,7 +168,7 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
     stats_.loop_closure_search_s += SecondsSince(start);
     ++stats_.loop_closure_searches;
     // The trimmer may have dropped either end while the search ran.
-    if (!constraint || submaps_[search.submap].trimmed || nodes_[search.node].trimmed) return;
+    if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
     constraint->submap = search.submap;
     constraint->node = search.node;
     AddLoopClosureLocked(*constraint);
@@ -190,7 +191,7 @@ void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
     const Constraint2D& c = constraints_[i];
     if (c.tag == Constraint2D::kIntraSubmap) continue;
     views.push_back({c.node, c.submap, c.T_submap_node, submaps_[c.submap].submap->T_local_submap(),
-                     nodes_[c.node].T_local_node, c.tag == Constraint2D::kInterSubmap});
+                     NodeLocked(c.node).T_local_node, c.tag == Constraint2D::kInterSubmap});
     constraint_index.push_back(i);
   }
   for (int v : ClosuresToAccept(views, static_cast<int>(views.size()) - 1, verification)) {
@@ -214,7 +215,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
       submaps_[s].matcher = matcher;
       for (const auto& search : searches) QueueSearchLocked(search);
       if (search_all_nodes) {
-        for (int n = 0; n < static_cast<int>(nodes_.size()); ++n) ScheduleSearchLocked(n, s);
+        for (size_t n = 0; n < nodes_.size(); ++n) ScheduleSearchLocked(nodes_[n].index, s);
       }
       tasks.swap(pending_tasks_);
     }
@@ -239,16 +240,19 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
     for (size_t n = 0; n < nodes_.size(); ++n) {
       if (nodes_[n].trimmed) continue;
       node_slot[n] = problem.AddNode(T_map_nodes_[n]);
-      node_ids.push_back(static_cast<int>(n));
+      node_ids.push_back(nodes_[n].index);
     }
     for (Constraint2D constraint : constraints_) {
       if (constraint.tag == Constraint2D::kLoopClosureCandidate) continue;
       constraint.submap = submap_slot[constraint.submap];
-      constraint.node = node_slot[constraint.node];
+      constraint.node = node_slot[SlotLocked(constraint.node)];
       problem.AddConstraint(constraint);
     }
     for (size_t i = 0; i + 1 < nodes_.size(); ++i) {
-      if (node_slot[i] < 0 || node_slot[i + 1] < 0) continue;
+      // Not across a node that is gone (trimmed, or removed after trimming).
+      if (node_slot[i] < 0 || node_slot[i + 1] < 0 || nodes_[i + 1].index != nodes_[i].index + 1) {
+        continue;
+      }
       NodeToNodeConstraint2D c;
       c.from = node_slot[i];
       c.to = node_slot[i + 1];
@@ -273,19 +277,23 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
     // The newest node is never trimmed (its submaps are still active), so the graph ends with
-    // node_ids.back() + 1 nodes as the problem was built.
-    const size_t num_nodes = node_ids.back() + 1;
+    // node_ids.back() + 1 nodes as the problem was built. Nodes removed meanwhile were
+    // trimmed before it was built, so every node_ids entry is still held.
+    const int num_nodes = node_ids.back() + 1;
     const size_t num_submaps = submap_ids.empty() ? 0 : submap_ids.back() + 1;
     const std::vector<common::Rigid2d> before(T_map_submaps_.begin(),
                                               T_map_submaps_.begin() + num_submaps);
-    for (size_t i = 0; i < node_ids.size(); ++i) T_map_nodes_[node_ids[i]] = problem.T_map_nodes()[i];
+    for (size_t i = 0; i < node_ids.size(); ++i) {
+      T_map_nodes_[SlotLocked(node_ids[i])] = problem.T_map_nodes()[i];
+    }
     for (size_t i = 0; i < submap_ids.size(); ++i) {
       T_map_submaps_[submap_ids[i]] = problem.T_map_submaps()[i];
     }
     // Work added while solving follows the correction of the last optimised node.
-    const common::Rigid2d T_map_local = T_map_nodes_[num_nodes - 1] * T_local_last_node.inverse();
-    for (size_t i = num_nodes; i < nodes_.size(); ++i) {
-      T_map_nodes_[i] = T_map_local * nodes_[i].T_local_node;
+    const common::Rigid2d T_map_local =
+        T_map_nodes_[SlotLocked(num_nodes - 1)] * T_local_last_node.inverse();
+    for (size_t i = 0; i < nodes_.size(); ++i) {
+      if (nodes_[i].index >= num_nodes) T_map_nodes_[i] = T_map_local * nodes_[i].T_local_node;
     }
     for (size_t i = num_submaps; i < submaps_.size(); ++i) {
       T_map_submaps_[i] = T_map_local * submaps_[i].submap->T_local_submap();
@@ -358,7 +366,7 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
   // A node is kept while some remaining submap holds it.
   std::vector<bool> held(nodes_.size(), false);
   for (const auto& c : constraints_) {
-    if (c.tag == Constraint2D::kIntraSubmap) held[c.node] = true;
+    if (c.tag == Constraint2D::kIntraSubmap) held[SlotLocked(c.node)] = true;
   }
   for (size_t n = 0; n < nodes_.size(); ++n) {
     NodeData& node = nodes_[n];
@@ -368,11 +376,11 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
     std::vector<int>().swap(node.inserted_into);
     ++stats_.trimmed_nodes;
   }
-  const auto node_trimmed = [this](const Constraint2D& c) { return nodes_[c.node].trimmed; };
+  const auto node_trimmed = [this](const Constraint2D& c) { return NodeGoneLocked(c.node); };
   constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(), node_trimmed),
                      constraints_.end());
   for (auto it = searches_in_flight_.begin(); it != searches_in_flight_.end();) {
-    if (submaps_[it->second.submap].trimmed || nodes_[it->second.node].trimmed) {
+    if (submaps_[it->second.submap].trimmed || NodeGoneLocked(it->second.node)) {
       it = searches_in_flight_.erase(it);
     } else {
       ++it;
@@ -399,6 +407,8 @@ std::shared_ptr<const PoseGraphSnapshot> PoseGraph2D::Snapshot() const {
   auto snapshot = std::make_shared<PoseGraphSnapshot>();
   std::lock_guard<std::mutex> lock(mutex_);
   snapshot->solve_count = solve_count_;
+  snapshot->node_ids.reserve(nodes_.size());
+  for (const auto& node : nodes_) snapshot->node_ids.push_back(node.index);
   snapshot->T_map_submaps = T_map_submaps_;
   snapshot->T_map_nodes = T_map_nodes_;
   return snapshot;
@@ -416,6 +426,32 @@ std::vector<double> PoseGraph2D::node_stamps_s() const {
   std::vector<double> stamps;
   for (const auto& n : nodes_) stamps.push_back(n.stamp_s);
   return stamps;
+}
+
+int PoseGraph2D::SlotLocked(int node) const {
+  const auto it = std::lower_bound(nodes_.begin(), nodes_.end(), node,
+                                   [](const NodeData& n, int index) { return n.index < index; });
+  return it != nodes_.end() && it->index == node ? static_cast<int>(it - nodes_.begin()) : -1;
+}
+
+std::vector<ArchivedNode2D> PoseGraph2D::TakeTrimmedNodes() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<ArchivedNode2D> taken;
+  size_t kept = 0;
+  for (size_t i = 0; i < nodes_.size(); ++i) {
+    if (nodes_[i].trimmed) {
+      taken.push_back({nodes_[i].index, nodes_[i].stamp_s, T_map_nodes_[i]});
+      continue;
+    }
+    if (kept != i) {
+      nodes_[kept] = std::move(nodes_[i]);
+      T_map_nodes_[kept] = T_map_nodes_[i];
+    }
+    ++kept;
+  }
+  nodes_.resize(kept);
+  T_map_nodes_.resize(kept);
+  return taken;
 }
 
 common::Rigid2d PoseGraph2D::T_map_local() const {

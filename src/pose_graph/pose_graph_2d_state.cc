@@ -15,7 +15,8 @@ PoseGraphState2D PoseGraph2D::ExportState(
   state.nodes.reserve(nodes_.size());
   for (const auto& node : nodes_) {
     state.nodes.push_back(
-        {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
+        {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
+         node.trimmed});
   }
   for (const auto& submap : submaps_) {
     submaps->push_back(submap.submap);
@@ -46,7 +47,8 @@ void PoseGraph2D::RestoreState(
     assert(state.T_map_submaps.size() == state.submaps.size());
     for (const auto& node : state.nodes) {
       nodes_.push_back(
-          {node.stamp_s, node.T_local_node, node.cloud, node.inserted_into, node.trimmed});
+          {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
+         node.trimmed});
     }
     for (size_t s = 0; s < submaps.size(); ++s) {
       SubmapData data;

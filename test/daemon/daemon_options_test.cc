@@ -27,6 +27,7 @@ TEST(DaemonOptionsTest, ProfileWithoutDaemonKeyUsesDefaults) {
   EXPECT_EQ(slam.channels.lidar, "LIDAR");
   EXPECT_EQ(options.sensor_queue_size, DaemonOptions().sensor_queue_size);
   EXPECT_EQ(options.health_channel, "FUSEMAP_HEALTH");
+  EXPECT_EQ(options.cloud_region_channel, "FUSEMAP_CLOUD_REGION");
 }
 
 TEST(DaemonOptionsTest, DaemonYamlLoadsAndKeepsSimSlamOptions) {
@@ -74,6 +75,13 @@ TEST(DaemonOptionsTest, UnknownAndOutOfRangeDaemonKeysFailWithKey) {
                                &options, &error))
       << error;
   EXPECT_EQ(options.rgbd_queue_size, 9);
+  ASSERT_TRUE(LoadDaemonConfig(WriteTemp("cloud.yaml", "daemon:\n  cloud_region_channel: CLOUD\n"),
+                               &slam, &options, &error))
+      << error;
+  EXPECT_EQ(options.cloud_region_channel, "CLOUD");
+  EXPECT_FALSE(LoadDaemonConfig(WriteTemp("empty.yaml", "daemon:\n  cloud_region_channel: ''\n"),
+                                &slam, &options, &error));
+  EXPECT_NE(error.find("channel"), std::string::npos) << error;
 }
 
 }  // namespace

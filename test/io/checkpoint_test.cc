@@ -156,6 +156,52 @@ TEST(CheckpointTest, LoopClosureCandidatesRoundTripAndBadTagsAreRejected) {
   EXPECT_NE(error.find("tag"), std::string::npos) << error;
 }
 
+TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
+  CheckpointContents contents = MakeContents(true);
+  // What the daemon does before each save: trimmed nodes leave the graph.
+  pose_graph::PoseGraphState2D& graph = contents.state.pose_graph;
+  int gone = -1;
+  for (size_t n = graph.nodes.size(); n-- > 0;) {
+    if (!graph.nodes[n].trimmed) continue;
+    gone = graph.nodes[n].index;
+    graph.nodes.erase(graph.nodes.begin() + n);
+    graph.T_map_nodes.erase(graph.T_map_nodes.begin() + n);
+  }
+  ASSERT_GE(gone, 0);
+  contents.odometry = {{2.5, common::Rigid2d({1.0, 2.0}, 0.3)}, {2.6, common::Rigid2d({1.1, 2.0}, 0.31)}};
+  contents.archive.nodes_bytes = 1234;
+  contents.archive.last_odometry_stamp_s = 2.4;
+  const std::string bytes = EncodeCheckpoint(contents, true);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  ASSERT_EQ(read.state.pose_graph.nodes.size(), graph.nodes.size());
+  for (size_t n = 0; n < graph.nodes.size(); ++n) {
+    EXPECT_EQ(read.state.pose_graph.nodes[n].index, graph.nodes[n].index) << n;
+  }
+  ASSERT_EQ(read.odometry.size(), 2u);
+  EXPECT_EQ(read.odometry[1].pose.angle_rad(), 0.31);
+  EXPECT_EQ(read.archive.nodes_bytes, 1234u);
+  EXPECT_EQ(read.archive.last_odometry_stamp_s, 2.4);
+  EXPECT_EQ(EncodeCheckpoint(read, true), bytes);
+
+  // A constraint on a node that left the graph is an inconsistent state, not a crash later.
+  CheckpointContents bad = contents;
+  ASSERT_FALSE(bad.state.pose_graph.constraints.empty());
+  bad.state.pose_graph.constraints.front().node = gone;
+  EXPECT_FALSE(DecodeCheckpoint(EncodeCheckpoint(bad, true), "bad.fmck", &read, &error));
+  EXPECT_NE(error.find("bad.fmck"), std::string::npos) << error;
+  // So are node indices out of order, and odometry going back in time.
+  bad = contents;
+  std::swap(bad.state.pose_graph.nodes[0].index, bad.state.pose_graph.nodes[1].index);
+  EXPECT_FALSE(DecodeCheckpoint(EncodeCheckpoint(bad, true), "bad.fmck", &read, &error));
+  EXPECT_NE(error.find("increasing"), std::string::npos) << error;
+  bad = contents;
+  bad.odometry[1].stamp_s = 1.0;
+  EXPECT_FALSE(DecodeCheckpoint(EncodeCheckpoint(bad, true), "bad.fmck", &read, &error));
+  EXPECT_NE(error.find("back in time"), std::string::npos) << error;
+}
+
 TEST(CheckpointTest, CompressionShrinksTheGrids) {
   const size_t packed = EncodeCheckpoint(Contents(), true).size();
   const size_t raw = EncodeCheckpoint(Contents(), false).size();

@@ -31,6 +31,16 @@ MapBuilderOptions2D TestOptions(double sampling_ratio) {
   return options;
 }
 
+// The small room: each new submap covers the older ones again, so trimming goes on all the time.
+MapBuilderOptions2D TrimmingOptions() {
+  MapBuilderOptions2D options = TestOptions(0.3);
+  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
+  trimmer.fresh_submaps_count = 1;
+  trimmer.min_covered_area_m2 = 0.5;
+  trimmer.min_added_submaps_count = 2;
+  return options;
+}
+
 struct Input {
   sensor::OdometryData odometry;
   sensor::LaserScan scan;
@@ -132,11 +142,7 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   const std::vector<Input> input = LoopInput(2.2);
   const size_t split = input.size() * 2 / 3;
   common::InlineExecutor executor;
-  MapBuilderOptions2D options = TestOptions(0.3);
-  OverlappingSubmapsTrimmerOptions2D& trimmer = options.global_slam.overlapping_submaps_trimmer;
-  trimmer.fresh_submaps_count = 1;
-  trimmer.min_covered_area_m2 = 0.5;
-  trimmer.min_added_submaps_count = 2;
+  const MapBuilderOptions2D options = TrimmingOptions();
   MapBuilder2D original(options, &executor);
   Feed(input, 0, split, &original);
   const MapBuilderState2D state = original.ExportState();
@@ -159,6 +165,54 @@ TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   EXPECT_EQ(restored->pose_graph().stats().trimmed_nodes,
             original.pose_graph().stats().trimmed_nodes);
   ExpectSamePoses(original.NodePoses(), restored->NodePoses());
+}
+
+// Taking trimmed nodes out of the graph takes memory, not information: the nodes taken merged
+// with the ones kept are the run without taking any, and a state exported after taking them
+// restores and continues exactly.
+TEST(MapBuilderState2DTest, ArchivingTrimmedNodesKeepsTheRunAndItsCheckpoints) {
+  const std::vector<Input> input = LoopInput(2.2);
+  common::InlineExecutor executor;
+  const MapBuilderOptions2D options = TrimmingOptions();
+  MapBuilder2D plain(options, &executor);
+  MapBuilder2D archiving(options, &executor);
+  std::vector<MapBuilder2D::TimedPose2d> archived;
+  const size_t split = input.size() * 2 / 3;
+  for (size_t begin = 0; begin < split; begin += 20) {
+    const size_t end = std::min(split, begin + 20);
+    Feed(input, begin, end, &plain);
+    Feed(input, begin, end, &archiving);
+    for (const auto& node : archiving.pose_graph().TakeTrimmedNodes()) {
+      archived.push_back({node.stamp_s, node.T_map_node});
+    }
+  }
+  ASSERT_GT(archived.size(), 20u);
+  const auto held = archiving.pose_graph().Snapshot();
+  EXPECT_EQ(held->node_ids.size() + archived.size(),
+            static_cast<size_t>(archiving.pose_graph().stats().nodes));
+  EXPECT_TRUE(archiving.pose_graph().TakeTrimmedNodes().empty());
+
+  const MapBuilderState2D state = archiving.ExportState();
+  EXPECT_EQ(state.pose_graph.nodes.size(), held->node_ids.size());
+  EXPECT_EQ(state.pose_graph.nodes.back().index, held->node_ids.back());
+  EXPECT_LT(state.pose_graph.nodes.size(), plain.ExportState().pose_graph.nodes.size());
+  auto restored = MapBuilder2D::Restore(options, &executor, state);
+  EXPECT_EQ(restored->pose_graph().Snapshot()->node_ids, held->node_ids);
+  Feed(input, split, input.size(), &plain);
+  Feed(input, split, input.size(), &archiving);
+  Feed(input, split, input.size(), restored.get());
+  plain.Finish();
+  archiving.Finish();
+  restored->Finish();
+
+  EXPECT_EQ(archiving.pose_graph().stats().loop_closures_found,
+            plain.pose_graph().stats().loop_closures_found);
+  auto whole = archived;
+  for (const auto& node : archiving.NodePoses()) whole.push_back(node);
+  std::sort(whole.begin(), whole.end(),
+            [](const auto& a, const auto& b) { return a.stamp_s < b.stamp_s; });
+  ExpectSamePoses(plain.NodePoses(), whole);
+  ExpectSamePoses(archiving.NodePoses(), restored->NodePoses());
 }
 
 // Holds tasks until RunAll(), so a test can export while work is deterministically in flight.

@@ -39,11 +39,13 @@ constexpr char kUsage[] =
     "everything queued, runs the final optimisation and writes DIR/trajectory.tum, DIR/nodes.tum,\n"
     "DIR/map.pgm, DIR/map.yaml and DIR/map.png (as fusemap_offline; with RGB-D frames and\n"
     "cloud.enabled also DIR/cloud.ply/.pcd, DIR/cloud_removed.ply, DIR/octomap.bt/.ot and\n"
-    "DIR/cloud.png, while changed cloud regions go out on FUSEMAP_CLOUD_REGION as\n"
+    "DIR/cloud.png, while changed cloud regions go out on daemon.cloud_region_channel as\n"
     "fusemap_lcm.cloud_region_t, at most every 0.5 s). Its state goes to\n"
     "DIR/checkpoint.fmck every daemon.checkpoint_period_s and at shutdown (the one before is\n"
-    "kept as DIR/checkpoint.fmck.prev). After --resume, trajectory.tum has a pose per node up\n"
-    "to the resume point and a pose per odometry sample after it.\n"
+    "kept as DIR/checkpoint.fmck.prev). Each checkpoint first moves the odometry record and\n"
+    "the nodes submap trimming let go (global_slam.overlapping_submaps_trimmer) out of memory\n"
+    "into DIR/archive/ (nodes.bin, odometry.bin), so memory stays flat in a mapped place; the\n"
+    "output files still cover the whole run.\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
@@ -167,7 +169,8 @@ int Run(const Args& args) {
        options.health_channel},
       !args.quiet);
   // Changed regions of the coloured map (cloud.enabled), for a viewer to follow.
-  daemon::LcmCloudRegionPublisher cloud_publisher(input.publish_handle(), "FUSEMAP_CLOUD_REGION");
+  daemon::LcmCloudRegionPublisher cloud_publisher(input.publish_handle(),
+                                                  options.cloud_region_channel);
   auto engine = std::make_unique<daemon::Engine>(slam, options, args.threads, policy, &publisher,
                                                  &log);
   engine->SetCloudRegionPublisher(&cloud_publisher);
@@ -175,8 +178,18 @@ int Run(const Args& args) {
     if (!args.quiet) std::fprintf(stderr, "fusemapd: %s\n", line.c_str());
   });
   engine->SetCheckpointer(&checkpointer);
+  std::string warning;
+  auto archive = io::TrajectoryArchive::Open(args.out + "/archive",
+                                             args.resume ? &resume.contents.archive : nullptr,
+                                             &warning, &error);
+  if (!archive) {
+    std::fprintf(stderr, "fusemapd: trajectory archive: %s\n", error.c_str());
+    return kExitRuntime;
+  }
+  if (!warning.empty()) std::fprintf(stderr, "fusemapd: --resume: %s\n", warning.c_str());
+  engine->SetTrajectoryArchive(std::move(archive));
   if (args.resume) {
-    engine->Restore(resume.contents.state);
+    engine->Restore(resume.contents.state, std::move(resume.contents.odometry));
     std::fprintf(stderr, "fusemapd: resumed from %s (%zu nodes, %zu submaps)\n",
                  resume.used_path.c_str(), resume.contents.state.pose_graph.nodes.size(),
                  resume.contents.state.submaps.size());

@@ -16,6 +16,7 @@ struct DaemonOptions {
   std::string submap_list_channel = "FUSEMAP_SUBMAPS";
   std::string loop_closure_channel = "FUSEMAP_LOOP_CLOSURE";
   std::string health_channel = "FUSEMAP_HEALTH";
+  std::string cloud_region_channel = "FUSEMAP_CLOUD_REGION";
   // Laser, odometry and IMU share one queue so their order is kept (the offline runner's order).
   int sensor_queue_size = 400;
   int rgbd_queue_size = 4;

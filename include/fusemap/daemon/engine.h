@@ -20,6 +20,7 @@
 #include "fusemap/daemon/rate_limited_log.h"
 #include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
+#include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 
 namespace fusemap {
@@ -49,10 +50,16 @@ class Engine {
   void SetCloudRegionPublisher(CloudRegionPublisher* publisher) { cloud_publisher_ = publisher; }
   // Before Start(): for restoring a checkpoint into.
   pose_graph::MapBuilder2D& builder() { return *builder_; }
-  // Before Start(): continue from a checkpointed state (--resume). Replaces the builder,
-  // refuses input older than the state's last node, and makes WriteOutputs write a whole-run
-  // trajectory (daemon/resume.h).
-  void Restore(const pose_graph::MapBuilderState2D& state);
+  // Before Start(): continue from a checkpointed state (--resume) and the odometry record
+  // saved with it. Replaces the builder and refuses input older than the state's last node.
+  void Restore(const pose_graph::MapBuilderState2D& state,
+               std::vector<sensor::OdometryData> odometry);
+  // Before Start(): at each checkpoint, trimmed nodes and the odometry record move out of
+  // memory into `archive` (io/trajectory_archive.h), so that memory does not follow the run's
+  // length; WriteOutputs reads them back.
+  void SetTrajectoryArchive(std::unique_ptr<io::TrajectoryArchive> archive) {
+    archive_ = std::move(archive);
+  }
 
   void Start();
   Intake& intake() { return intake_; }
@@ -60,7 +67,8 @@ class Engine {
   // checkpoint, publishes the final submap list and health, and joins every thread. Idempotent.
   void Finish();
 
-  // After Finish(): the builder and the odometry the SLAM thread accepted.
+  // After Finish(): the builder and the odometry the SLAM thread accepted (since the last
+  // archiving, with a trajectory archive).
   const pose_graph::MapBuilder2D& finished_builder() const { return *builder_; }
   const std::vector<sensor::OdometryData>& odometry() const { return odometry_; }
   // After Finish(): the RGB-D thread's cloud mapper; null without cloud.enabled.
@@ -89,6 +97,8 @@ class Engine {
   void RunRgbd();
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
+  // Moves trimmed nodes and the odometry record into archive_ (SLAM thread, executor idle).
+  void ArchiveSettled();
   void PublishSubmapsAndLoops(double stamp_s);
   void ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result);
   void ConnectBuilder();
@@ -118,11 +128,12 @@ class Engine {
   // SLAM thread only (read by others only after Finish joined it).
   int cloud_seen_submaps_ = -1;
   std::vector<sensor::OdometryData> odometry_;
+  std::unique_ptr<io::TrajectoryArchive> archive_;
+  std::atomic<int> archive_failures_{0};
   std::chrono::steady_clock::time_point last_checkpoint_;
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};
   std::atomic<double> last_stamp_s_{0.0};
-  bool resumed_ = false;  // set before Start()
   // Publisher thread only.
   int published_loop_closures_ = 0;
 

@@ -25,7 +25,8 @@ class FileCheckpointer : public Checkpointer {
   // `options_yaml`: the configuration file's text, stored verbatim for --resume to compare.
   FileCheckpointer(std::string path, std::string options_yaml, LogLine log = nullptr);
 
-  bool Save(pose_graph::MapBuilder2D& builder, std::string* error) override;
+  bool Save(pose_graph::MapBuilder2D& builder, const RunRecord& record,
+            std::string* error) override;
 
   struct Stats {
     int saved = 0;

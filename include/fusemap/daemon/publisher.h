@@ -5,6 +5,7 @@
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/daemon/health.h"
+#include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/pose_graph/pose_graph_snapshot.h"
 
@@ -27,10 +28,17 @@ class Publisher {
 // Where "write the state every checkpoint_period_s and at shutdown" plugs in. Save is called
 // on the local SLAM thread between two messages (no scan in flight), after waiting for the
 // executor to be idle, so the builder's state is consistent.
+// What a checkpoint holds besides the builder's state; null members are stored empty.
+struct RunRecord {
+  const std::vector<sensor::OdometryData>* odometry = nullptr;
+  const io::TrajectoryArchiveMark* archive = nullptr;
+};
+
 class Checkpointer {
  public:
   virtual ~Checkpointer() = default;
-  virtual bool Save(pose_graph::MapBuilder2D& builder, std::string* error) = 0;
+  virtual bool Save(pose_graph::MapBuilder2D& builder, const RunRecord& record,
+                    std::string* error) = 0;
 };
 
 }  // namespace daemon

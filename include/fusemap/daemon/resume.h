@@ -33,19 +33,6 @@ ResumeStatus LoadResumeCheckpoint(const std::string& path, const std::string& op
 // The last time in a restored state: its newest node's stamp, -infinity without nodes.
 double LastStateStamp(const pose_graph::MapBuilderState2D& state);
 
-// A whole-run trajectory after a resume. The odometry record is not part of a checkpoint, so
-// before the first odometry sample of this run (the resume point) it has a pose per node;
-// from there on a pose per odometry sample, densified from this run's nodes only
-// (pose_graph::DensifyWithOdometry). Equals DensifyWithOdometry when nothing was restored.
-std::vector<pose_graph::MapBuilder2D::TimedPose2d> ResumedTrajectory(
-    const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& nodes,
-    const std::vector<sensor::OdometryData>& odometry);
-
-// Writes ResumedTrajectory as DIR/trajectory.tum (strictly increasing stamps).
-bool WriteResumedTrajectory(const pose_graph::MapBuilder2D& builder,
-                            const std::vector<sensor::OdometryData>& odometry,
-                            const std::string& dir, std::string* error);
-
 }  // namespace daemon
 }  // namespace fusemap
 

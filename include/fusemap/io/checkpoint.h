@@ -4,7 +4,9 @@
 #include <cstdint>
 #include <string>
 
+#include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_state_2d.h"
+#include "fusemap/sensor/sensor_types.h"
 
 namespace fusemap {
 namespace io {
@@ -17,14 +19,19 @@ const char* FusemapVersion();
 //                      u64 payload length, u32 zlib crc32 of the payload,
 //                      u32 crc32 of the preceding 32 header bytes
 //   payload: fusemap version string, options YAML text, MapBuilderState2D
-//            (see map_builder_state_codec.h; grids optionally zlib-compressed).
-constexpr uint32_t kCheckpointFormatVersion = 2;
+//            (see map_builder_state_codec.h; grids optionally zlib-compressed), the odometry
+//            record, the trajectory archive's mark.
+constexpr uint32_t kCheckpointFormatVersion = 3;
 
 struct CheckpointContents {
   std::string fusemap_version = FusemapVersion();
   // The configuration the state was mapped with, verbatim, so a resume can compare or reuse it.
   std::string options_yaml;
   pose_graph::MapBuilderState2D state;
+  // The odometry the run's trajectory output still needs (all of it without an archive).
+  std::vector<sensor::OdometryData> odometry;
+  // Where the run's TrajectoryArchive was (an empty mark when the run keeps none).
+  TrajectoryArchiveMark archive;
 };
 
 // Replaces the checkpoint at `path` atomically: writes path.tmp and fsyncs it, renames the

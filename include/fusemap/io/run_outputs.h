@@ -6,6 +6,7 @@
 
 #include "fusemap/cloud/cloud_mapper.h"
 #include "fusemap/eval/trajectory.h"
+#include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/sensor/sensor_types.h"
 
@@ -24,6 +25,9 @@ struct RunOutputs {
   // Optional (null: no cloud outputs); after Finish(). Cloud files are written only if it
   // bound at least one frame.
   const cloud::CloudMapper* cloud_mapper = nullptr;
+  // Optional (fusemapd): what the run moved out of memory; the trajectory files then cover the
+  // archived nodes and odometry as well as the builder's nodes and `odometry`.
+  const TrajectoryArchive* archive = nullptr;
 };
 
 struct RunOutputsReport {

@@ -54,13 +54,22 @@ struct PendingSearch2D {
 
 struct PoseGraphState2D;
 
+// A node removed from the graph by PoseGraph2D::TakeTrimmedNodes, with its final pose.
+struct ArchivedNode2D {
+  int node = 0;
+  double stamp_s = 0.0;
+  common::Rigid2d T_map_node;
+};
+
 // Global SLAM (Hess et al. 2016, Sec. V): collects local SLAM's nodes and submaps, searches
 // loop closures against finished submaps with branch-and-bound, and periodically re-solves all
 // poses with sparse pose adjustment. Searches and optimisations run as tasks on the given
 // executor; with an InlineExecutor every call completes synchronously and runs are
 // reproducible. With the overlapping submaps trimmer on, submaps and nodes may be trimmed after
 // an optimisation: they keep their index and last pose, but their data is released and they
-// take no further part. All public methods are thread-safe.
+// take no further part. Trimmed nodes can then be taken out of memory altogether
+// (TakeTrimmedNodes), so that a graph that keeps trimming holds what the map needs, not what the
+// run has seen; node indices stay those given by AddNode. All public methods are thread-safe.
 class PoseGraph2D {
  public:
   struct Stats {
@@ -102,10 +111,15 @@ class PoseGraph2D {
   void RunFinalOptimization();
 
   // Current global estimate: T_map_local applied to local poses of nodes not yet optimised.
+  // Its T_map_nodes are those of the nodes still held (node_ids).
   std::shared_ptr<const PoseGraphSnapshot> Snapshot() const;
   // By index; null for trimmed submaps.
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps() const;
+  // Stamps of the nodes still held, oldest first.
   std::vector<double> node_stamps_s() const;
+  // Removes every trimmed node from the graph and returns them oldest first. Their poses are
+  // final: trimmed nodes are in no optimisation problem.
+  std::vector<ArchivedNode2D> TakeTrimmedNodes();
   common::Rigid2d T_map_local() const;
   // The index of a submap a node was inserted into, or -1 if no node has reached it yet.
   int SubmapIndex(const mapping::Submap2D* submap) const;
@@ -126,6 +140,7 @@ class PoseGraph2D {
 
  private:
   struct NodeData {
+    int index;  // as AddNode returned it
     double stamp_s;
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;
@@ -159,15 +174,25 @@ class PoseGraph2D {
   void MaybeTrim();
   // Drops `submaps`, their constraints, and the nodes left in no remaining submap.
   void TrimLocked(const std::vector<int>& submaps);
+  // Where node `node` is in nodes_, -1 once TakeTrimmedNodes removed it.
+  int SlotLocked(int node) const;
+  // `node` must be held.
+  NodeData& NodeLocked(int node) { return nodes_[SlotLocked(node)]; }
+  // Trimmed, or removed by TakeTrimmedNodes.
+  bool NodeGoneLocked(int node) const {
+    const int slot = SlotLocked(node);
+    return slot < 0 || nodes_[slot].trimmed;
+  }
 
   const PoseGraphOptions2D options_;
   common::Executor* const executor_;
 
   mutable std::mutex mutex_;
+  // The nodes held, by increasing index (stats_.nodes were added in all).
   std::vector<NodeData> nodes_;              // guarded by mutex_
   std::vector<SubmapData> submaps_;          // guarded by mutex_
   std::map<const mapping::Submap2D*, int> submap_index_;  // guarded by mutex_
-  std::vector<common::Rigid2d> T_map_nodes_;    // guarded by mutex_
+  std::vector<common::Rigid2d> T_map_nodes_;    // guarded by mutex_, like nodes_
   std::vector<common::Rigid2d> T_map_submaps_;  // guarded by mutex_
   std::vector<Constraint2D> constraints_;       // guarded by mutex_
   int nodes_since_optimization_ = 0;            // guarded by mutex_
@@ -184,9 +209,12 @@ class PoseGraph2D {
 };
 
 // Everything PoseGraph2D holds besides its options and the submap grids, as plain values
-// (checkpoints). Submaps are numbered as in PoseGraph2D; their grids travel separately.
+// (checkpoints). Submaps are numbered as in PoseGraph2D; their grids travel separately. Nodes
+// (and T_map_nodes) are the ones held, by increasing index; constraints and searches name them
+// by that index.
 struct PoseGraphState2D {
   struct Node {
+    int index = 0;
     double stamp_s = 0.0;
     common::Rigid2d T_local_node;
     sensor::PointCloud2d cloud;

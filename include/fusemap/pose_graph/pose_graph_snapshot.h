@@ -15,6 +15,8 @@ struct PoseGraphSnapshot {
   // Number of completed solves when the snapshot was taken; larger is newer.
   std::uint64_t solve_count = 0;
   std::vector<common::Rigid2d> T_map_submaps;
+  // The nodes the graph holds: their indices and poses.
+  std::vector<int> node_ids;
   std::vector<common::Rigid2d> T_map_nodes;
 };
 
