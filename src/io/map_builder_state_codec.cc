@@ -137,7 +137,8 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     EncodeRigid2d(c.T_submap_node, out);
     out->F64(c.translation_weight);
     out->F64(c.rotation_weight);
-    out->U8(c.tag == pose_graph::Constraint2D::kInterSubmap ? 1 : 0);
+    // 0 intra-submap, 1 loop closure, 2 loop-closure candidate (older files hold only 0 and 1).
+    out->U8(static_cast<uint8_t>(c.tag));
   }
   out->U64(g.searches_in_flight.size());
   for (const auto& s : g.searches_in_flight) {
@@ -298,12 +299,16 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   if (!in->Count(49, &n)) return false;
   g.constraints.resize(n);
   for (auto& c : g.constraints) {
-    bool inter = false;
+    uint8_t tag = 0;
     if (!in->I32(&c.submap) || !in->I32(&c.node) || !DecodeRigid2d(in, &c.T_submap_node) ||
-        !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->Bool(&inter)) {
+        !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->U8(&tag)) {
       return false;
     }
-    c.tag = inter ? pose_graph::Constraint2D::kInterSubmap : pose_graph::Constraint2D::kIntraSubmap;
+    if (tag > pose_graph::Constraint2D::kLoopClosureCandidate) {
+      in->Fail("constraint tag is " + std::to_string(tag) + ", not 0, 1 or 2");
+      return false;
+    }
+    c.tag = static_cast<pose_graph::Constraint2D::Tag>(tag);
   }
   if (!in->Count(32, &n)) return false;
   g.searches_in_flight.resize(n);

@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <functional>
 
 namespace fusemap {
@@ -25,6 +26,10 @@ bool FastCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
     *error = "min_score must be in [0, 1]";
     return false;
   }
+  if (!(translation_delta_cost_weight >= 0.0 && rotation_delta_cost_weight >= 0.0)) {
+    *error = "translation_delta_cost_weight and rotation_delta_cost_weight must be >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -35,6 +40,8 @@ FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
   reader.Get("angular_search_window_rad", &options.angular_search_window_rad);
   reader.Get("branch_and_bound_depth", &options.branch_and_bound_depth);
   reader.Get("min_score", &options.min_score);
+  reader.Get("translation_delta_cost_weight", &options.translation_delta_cost_weight);
+  reader.Get("rotation_delta_cost_weight", &options.rotation_delta_cost_weight);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("fast_correlative_scan_matcher", error);
   return options;
@@ -55,7 +62,10 @@ bool FastCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
                                          double* score, common::Rigid2d* pose) const {
   const SearchParameters params(options_.linear_search_window_m,
                                 options_.angular_search_window_rad, cloud, limits_.resolution_m);
-  return MatchWithSearchParameters(params, initial_pose, cloud, min_score, score, pose);
+  const bool with_prior =
+      options_.translation_delta_cost_weight > 0.0 || options_.rotation_delta_cost_weight > 0.0;
+  return MatchWithSearchParameters(params, initial_pose, cloud, min_score, with_prior, score,
+                                   pose);
 }
 
 bool FastCorrelativeScanMatcher2D::MatchFullSubmap(const sensor::PointCloud2d& cloud,
@@ -68,12 +78,12 @@ bool FastCorrelativeScanMatcher2D::MatchFullSubmap(const sensor::PointCloud2d& c
   const common::Rigid2d centre = common::Rigid2d::Translation(
       limits_.origin_m +
       0.5 * limits_.resolution_m * Eigen::Vector2d(limits_.num_x_cells, limits_.num_y_cells));
-  return MatchWithSearchParameters(params, centre, cloud, min_score, score, pose);
+  return MatchWithSearchParameters(params, centre, cloud, min_score, false, score, pose);
 }
 
 bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
     SearchParameters params, const common::Rigid2d& initial_pose,
-    const sensor::PointCloud2d& cloud, double min_score, double* score,
+    const sensor::PointCloud2d& cloud, double min_score, bool with_prior, double* score,
     common::Rigid2d* pose) const {
   assert(score != nullptr && pose != nullptr);
   if (cloud.empty()) return false;
@@ -88,9 +98,16 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
   params.ShrinkToFit(scans, limits_);
 
   const std::vector<Candidate2D> lowest_resolution_candidates =
-      ComputeLowestResolutionCandidates(scans, params);
-  const Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
-                                          grids_.max_depth(), min_score);
+      ComputeLowestResolutionCandidates(scans, params, with_prior);
+  // With a prior, the threshold is on the match itself: the prior only chooses among matches,
+  // so a good match far from the centre is not rejected for being far.
+  Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
+                                    grids_.max_depth(), with_prior ? 0.0 : min_score, with_prior);
+  if (with_prior) {
+    std::vector<Candidate2D> leaf = {best};
+    ScoreCandidates(grids_.Get(0), scans, false, &leaf);
+    best.score = leaf.front().score;
+  }
   if (!(best.score > min_score)) return false;
   *score = best.score;
   *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),
@@ -99,7 +116,8 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 }
 
 std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCandidates(
-    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params) const {
+    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
+    bool with_prior) const {
   const int step = grids_.Get(grids_.max_depth()).width_cells();
   std::vector<Candidate2D> candidates;
   for (int i = 0; i < params.num_scans; ++i) {
@@ -110,19 +128,35 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
       }
     }
   }
-  ScoreCandidates(grids_.Get(grids_.max_depth()), scans, &candidates);
+  ScoreCandidates(grids_.Get(grids_.max_depth()), scans, with_prior, &candidates);
   return candidates;
 }
 
 void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& grid,
                                                    const std::vector<DiscreteScan2D>& scans,
+                                                   bool with_prior,
                                                    std::vector<Candidate2D>* candidates) const {
+  // Offset of the cell in [start, start + width) nearest to 0.
+  const auto nearest_cells = [](int start, int width) {
+    return start > 0 ? start : (start + width - 1 < 0 ? start + width - 1 : 0);
+  };
   for (Candidate2D& candidate : *candidates) {
     const DiscreteScan2D& scan = scans[candidate.scan_index];
     const Eigen::Array2i offset(candidate.x_offset_cells, candidate.y_offset_cells);
     long sum = 0;
     for (const Eigen::Array2i& cell : scan) sum += grid.GetValue(cell + offset);
     candidate.score = PrecomputationScore(sum, static_cast<int>(scan.size()));
+    if (!with_prior) continue;
+    // The candidate stands for the offsets [x, x + width) x [y, y + width); the prior is
+    // largest at the one nearest the centre, so score times that factor still bounds every
+    // leaf below it and the search stays exact.
+    const int width = grid.width_cells();
+    const double distance_m =
+        limits_.resolution_m * std::hypot(nearest_cells(candidate.x_offset_cells, width),
+                                          nearest_cells(candidate.y_offset_cells, width));
+    const double cost = distance_m * options_.translation_delta_cost_weight +
+                        std::abs(candidate.angle_rad) * options_.rotation_delta_cost_weight;
+    candidate.score *= std::exp(-cost * cost);
   }
   std::sort(candidates->begin(), candidates->end(), std::greater<Candidate2D>());
 }
@@ -132,7 +166,8 @@ void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& g
 // (eq. 14), so a subtree whose bound does not beat the best leaf found so far is skipped.
 Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
-    const std::vector<Candidate2D>& candidates, int depth, double min_score) const {
+    const std::vector<Candidate2D>& candidates, int depth, double min_score,
+    bool with_prior) const {
   if (depth == 0) return candidates.front();  // sorted best first, never empty
   Candidate2D best(0, 0, 0, params);
   best.score = min_score;
@@ -149,8 +184,9 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
                               candidate.y_offset_cells + dy, params);
       }
     }
-    ScoreCandidates(grids_.Get(depth - 1), scans, &children);
-    const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score);
+    ScoreCandidates(grids_.Get(depth - 1), scans, with_prior, &children);
+    const Candidate2D child_best =
+        BranchAndBound(scans, params, children, depth - 1, best.score, with_prior);
     if (child_best.score > best.score) best = child_best;
   }
   return best;

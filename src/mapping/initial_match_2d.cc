@@ -65,6 +65,8 @@ InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
   reader.Get("angular_search_window_rad", &fast.angular_search_window_rad);
   reader.Get("branch_and_bound_depth", &fast.branch_and_bound_depth);
   reader.Get("min_score", &fast.min_score);
+  reader.Get("translation_delta_cost_weight", &fast.translation_delta_cost_weight);
+  reader.Get("rotation_delta_cost_weight", &fast.rotation_delta_cost_weight);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("refresh_every_n_insertions", error);
   return options;
@@ -130,6 +132,10 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
       local.linear_search_window_m = options_.near_linear_search_window_m;
       local.angular_search_window_rad = options_.near_angular_search_window_rad;
       local.branch_and_bound_depth = options_.fast_correlative_scan_matcher.branch_and_bound_depth;
+      local.translation_delta_cost_weight =
+          options_.fast_correlative_scan_matcher.translation_delta_cost_weight;
+      local.rotation_delta_cost_weight =
+          options_.fast_correlative_scan_matcher.rotation_delta_cost_weight;
       local_matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(coarse, local);
     }
     cached_submap_ = submap;

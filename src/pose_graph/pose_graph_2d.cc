@@ -32,7 +32,7 @@ bool PoseGraphOptions2D::IsValid(std::string* error) const {
     return false;
   }
   return constraint_builder.IsValid(error) && optimization.IsValid(error) &&
-         overlapping_submaps_trimmer.IsValid(error);
+         overlapping_submaps_trimmer.IsValid(error) && loop_closure_verification.IsValid(error);
 }
 
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
@@ -50,6 +50,10 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
   if (reader.Has("overlapping_submaps_trimmer")) {
     options.overlapping_submaps_trimmer =
         ParseOverlappingSubmapsTrimmerOptions2D(reader.Child("overlapping_submaps_trimmer"));
+  }
+  if (reader.Has("loop_closure_verification")) {
+    options.loop_closure_verification =
+        ParseLoopClosureVerificationOptions2D(reader.Child("loop_closure_verification"));
   }
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("optimize_every_n_nodes", error);
@@ -167,9 +171,33 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
     if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
     constraint->submap = search.submap;
     constraint->node = search.node;
-    constraints_.push_back(*constraint);
-    ++stats_.loop_closures_found;
+    AddLoopClosureLocked(*constraint);
   });
+}
+
+void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
+  const LoopClosureVerificationOptions2D& verification = options_.loop_closure_verification;
+  if (!verification.enabled()) {
+    constraints_.push_back(constraint);
+    ++stats_.loop_closures_found;
+    return;
+  }
+  constraints_.push_back(constraint);
+  constraints_.back().tag = Constraint2D::kLoopClosureCandidate;
+  // Every match so far, candidate or accepted, in local SLAM's frame, which nothing moves.
+  std::vector<ClosureView2D> views;
+  std::vector<size_t> constraint_index;
+  for (size_t i = 0; i < constraints_.size(); ++i) {
+    const Constraint2D& c = constraints_[i];
+    if (c.tag == Constraint2D::kIntraSubmap) continue;
+    views.push_back({c.node, c.submap, c.T_submap_node, submaps_[c.submap].submap->T_local_submap(),
+                     NodeLocked(c.node).T_local_node, c.tag == Constraint2D::kInterSubmap});
+    constraint_index.push_back(i);
+  }
+  for (int v : ClosuresToAccept(views, static_cast<int>(views.size()) - 1, verification)) {
+    constraints_[constraint_index[v]].tag = Constraint2D::kInterSubmap;
+    ++stats_.loop_closures_found;
+  }
 }
 
 std::function<void()> PoseGraph2D::MakeMatcherTask(
@@ -215,6 +243,7 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
       node_ids.push_back(nodes_[n].index);
     }
     for (Constraint2D constraint : constraints_) {
+      if (constraint.tag == Constraint2D::kLoopClosureCandidate) continue;
       constraint.submap = submap_slot[constraint.submap];
       constraint.node = node_slot[SlotLocked(constraint.node)];
       problem.AddConstraint(constraint);
@@ -450,6 +479,10 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   Stats stats = stats_;
   stats.constraints = static_cast<int>(constraints_.size());
+  stats.loop_closure_candidates = static_cast<int>(
+      std::count_if(constraints_.begin(), constraints_.end(), [](const Constraint2D& c) {
+        return c.tag == Constraint2D::kLoopClosureCandidate;
+      }));
   return stats;
 }
 

@@ -125,6 +125,37 @@ TEST(CheckpointTest, TrimmedSubmapsAndNodesRoundTrip) {
   EXPECT_LT(bytes.size(), EncodeCheckpoint(Contents(), true).size());
 }
 
+// Loop-closure candidates (waiting for verification) keep their tag; an unknown tag is an error.
+TEST(CheckpointTest, LoopClosureCandidatesRoundTripAndBadTagsAreRejected) {
+  CheckpointContents contents = Contents();
+  auto& constraints = contents.state.pose_graph.constraints;
+  ASSERT_FALSE(constraints.empty());
+  pose_graph::Constraint2D candidate = constraints.back();
+  candidate.tag = pose_graph::Constraint2D::kLoopClosureCandidate;
+  candidate.T_submap_node = common::Rigid2d(0.123456789, -2.5, 0.75);
+  constraints.push_back(candidate);
+  const std::string bytes = EncodeCheckpoint(contents, false);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  ASSERT_EQ(read.state.pose_graph.constraints.size(), constraints.size());
+  EXPECT_EQ(read.state.pose_graph.constraints.back().tag,
+            pose_graph::Constraint2D::kLoopClosureCandidate);
+  EXPECT_EQ(EncodeCheckpoint(read, false), bytes);
+
+  // The candidate's tag byte directly follows its rotation weight.
+  std::string payload = bytes.substr(36);
+  std::string tail;
+  ByteWriter tail_writer(&tail);
+  tail_writer.F64(candidate.rotation_weight);
+  tail_writer.U8(2);
+  const size_t at = payload.find(tail);
+  ASSERT_NE(at, std::string::npos);
+  payload[at + 8] = 7;
+  EXPECT_FALSE(DecodeCheckpoint(Reseal(bytes, payload), "ckpt", &read, &error));
+  EXPECT_NE(error.find("tag"), std::string::npos) << error;
+}
+
 TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
   CheckpointContents contents = MakeContents(true);
   // What the daemon does before each save: trimmed nodes leave the graph.

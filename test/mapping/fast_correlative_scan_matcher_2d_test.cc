@@ -124,6 +124,125 @@ TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundEqualsBruteForce) {
   }
 }
 
+// The best prior-weighted score over the same candidates as BruteForce, and its pose.
+struct PriorBruteForceResult {
+  double best_score = -1.0;  // with the prior
+  double match_score = 0.0;  // of the same candidate, without
+  common::Rigid2d best_pose;
+};
+
+PriorBruteForceResult BruteForceWithPrior(const ProbabilityGrid& grid,
+                                          const common::Rigid2d& initial_pose,
+                                          const sensor::PointCloud2d& cloud,
+                                          const FastCorrelativeScanMatcherOptions2D& options) {
+  SearchParameters params(options.linear_search_window_m, options.angular_search_window_rad,
+                          cloud, grid.limits().resolution_m);
+  const Eigen::Matrix2f rotation =
+      Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
+  sensor::PointCloud2d rotated;
+  for (const Eigen::Vector2f& p : cloud) rotated.push_back(rotation * p);
+  const std::vector<DiscreteScan2D> scans = DiscretizeScans(
+      grid.limits(), GenerateRotatedScans(rotated, params), initial_pose.translation().cast<float>());
+  params.ShrinkToFit(scans, grid.limits());
+  PriorBruteForceResult result;
+  for (int i = 0; i < params.num_scans; ++i) {
+    const SearchParameters::LinearBounds& b = params.linear_bounds[i];
+    for (int x = b.min_x; x <= b.max_x; ++x) {
+      for (int y = b.min_y; y <= b.max_y; ++y) {
+        long sum = 0;
+        for (const Eigen::Array2i& cell : scans[i]) {
+          sum += ProbabilityToPrecomputationValue(grid.GetProbability(cell + Eigen::Array2i(x, y)));
+        }
+        const Candidate2D c(i, x, y, params);
+        const double cost = std::hypot(c.x_m, c.y_m) * options.translation_delta_cost_weight +
+                            std::abs(c.angle_rad) * options.rotation_delta_cost_weight;
+        const double match_score = PrecomputationScore(sum, static_cast<int>(scans[i].size()));
+        const double score = match_score * std::exp(-cost * cost);
+        if (score <= result.best_score) continue;
+        result.best_score = score;
+        result.match_score = match_score;
+        result.best_pose = common::Rigid2d(
+            initial_pose.translation() + Eigen::Vector2d(c.x_m, c.y_m),
+            initial_pose.angle_rad() + c.angle_rad);
+      }
+    }
+  }
+  return result;
+}
+
+// With a prior on the search centre, branch and bound still finds the exhaustive search's
+// best prior-weighted candidate: each subtree's bound uses its offset nearest the centre.
+TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundWithPriorEqualsBruteForce) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    std::mt19937 rng(seed);
+    const ProbabilityGrid grid = MakeRandomGrid(60, 50, /*smooth=*/seed % 3 != 0, &rng);
+    std::uniform_real_distribution<double> coordinate(-0.2, 1.8);
+    std::uniform_real_distribution<double> angle(-common::kPi, common::kPi);
+    std::uniform_real_distribution<float> offset(-1.2f, 1.2f);
+    sensor::PointCloud2d cloud;
+    for (int i = 0; i < 40; ++i) cloud.emplace_back(offset(rng), offset(rng));
+    const common::Rigid2d initial(coordinate(rng), coordinate(rng) - 0.5, angle(rng));
+
+    FastCorrelativeScanMatcherOptions2D options;
+    options.linear_search_window_m = 0.6;
+    options.angular_search_window_rad = common::DegToRad(8.0);
+    options.translation_delta_cost_weight = 0.5 + 0.2 * (seed % 4);
+    options.rotation_delta_cost_weight = 3.0 * (seed % 3);
+    for (int depth : {2, 4, 6}) {
+      SCOPED_TRACE(depth);
+      options.branch_and_bound_depth = depth;
+      const FastCorrelativeScanMatcher2D matcher(grid, options);
+      const PriorBruteForceResult expected = BruteForceWithPrior(grid, initial, cloud, options);
+      ASSERT_GT(expected.best_score, 0.0);
+      double score = 0.0;
+      common::Rigid2d pose;
+      ASSERT_TRUE(matcher.Match(initial, cloud, 0.0, &score, &pose));
+      // Ties between candidates are improbable with a continuous prior.
+      EXPECT_NEAR((pose.translation() - expected.best_pose.translation()).norm(), 0.0, 1e-9);
+      EXPECT_NEAR(common::NormalizeAngle(pose.angle_rad() - expected.best_pose.angle_rad()), 0.0,
+                  1e-9);
+      // The score and the threshold are the match's own, without the prior.
+      EXPECT_NEAR(score, expected.match_score, 1e-9);
+      EXPECT_FALSE(matcher.Match(initial, cloud, expected.match_score + 1e-9, &score, &pose));
+      EXPECT_TRUE(matcher.Match(initial, cloud, expected.match_score - 1e-9, &score, &pose));
+    }
+  }
+}
+
+// The prior pulls the answer to the nearer of two equally good places.
+TEST(FastCorrelativeScanMatcher2DTest, PriorPrefersTheNearerOfTwoEqualMatches) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-2.0, -2.0);
+  limits.num_x_cells = 80;
+  limits.num_y_cells = 80;
+  ProbabilityGrid grid(limits);
+  // Two identical posts 1 m apart along x; the scan sees one post.
+  sensor::PointCloud2d cloud;
+  for (int i = 0; i < 8; ++i) {
+    for (double post_x : {-0.3, 0.7}) {
+      // Cell centres, so that no point sits on a cell boundary.
+      const Eigen::Array2i cell = limits.GetCellIndex(Eigen::Vector2f(
+          static_cast<float>(post_x + 0.025 + 0.05 * (i % 2)), 0.025f + 0.05f * (i / 2)));
+      grid.SetProbability(cell, 0.9f);
+    }
+    cloud.emplace_back(0.025f + 0.05f * (i % 2), 0.025f + 0.05f * (i / 2));
+  }
+  FastCorrelativeScanMatcherOptions2D options;
+  options.linear_search_window_m = 1.0;
+  options.angular_search_window_rad = 0.0;
+  options.branch_and_bound_depth = 4;
+  // Centre at x = 0.25: the post at 0.7 is 0.45 m away, the one at -0.3 is 0.55 m away.
+  const common::Rigid2d centre(0.25, 0.0, 0.0);
+  options.translation_delta_cost_weight = 1.0;
+  double score = 0.0;
+  common::Rigid2d pose;
+  ASSERT_TRUE(FastCorrelativeScanMatcher2D(grid, options).Match(centre, cloud, 0.0, &score, &pose));
+  EXPECT_NEAR(pose.translation().x(), 0.7, 1e-6);
+  EXPECT_NEAR(score, 0.9, 2e-3);
+}
+
 // A decoy copy B of the scan (cells at 0.79) whose coarse windows also hold one 0.9 cell per
 // point, each at a different place, so B's upper bounds beat the true copy A and B's subtree is
 // searched first. A equals B except for one cell one quantisation step higher, so A's bound
@@ -272,6 +391,19 @@ TEST(FastCorrelativeScanMatcher2DTest, ParsesOptionsAndRejectsOutOfRange) {
   EXPECT_EQ(options.angular_search_window_rad, 0.5);
   EXPECT_EQ(options.branch_and_bound_depth, 6);
   EXPECT_EQ(options.min_score, 0.6);
+  EXPECT_EQ(options.translation_delta_cost_weight, 0.0);
+  auto prior = common::ConfigReader::FromString(
+      "{translation_delta_cost_weight: 0.4, rotation_delta_cost_weight: 2.0}", "prior.yaml", &error);
+  ASSERT_NE(prior, nullptr) << error;
+  const auto with_prior = ParseFastCorrelativeScanMatcherOptions2D(*prior);
+  EXPECT_TRUE(prior->Finish(&error)) << error;
+  EXPECT_EQ(with_prior.translation_delta_cost_weight, 0.4);
+  EXPECT_EQ(with_prior.rotation_delta_cost_weight, 2.0);
+  auto negative =
+      common::ConfigReader::FromString("{rotation_delta_cost_weight: -1}", "neg.yaml", &error);
+  ASSERT_NE(negative, nullptr) << error;
+  ParseFastCorrelativeScanMatcherOptions2D(*negative);
+  EXPECT_FALSE(negative->Finish(&error));
   auto bad = common::ConfigReader::FromString("{branch_and_bound_depth: 0}", "bad.yaml", &error);
   ASSERT_NE(bad, nullptr) << error;
   ParseFastCorrelativeScanMatcherOptions2D(*bad);

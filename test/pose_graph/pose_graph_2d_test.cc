@@ -47,7 +47,7 @@ struct RunResult {
 // Stands in for local SLAM with a known drift: every step's estimated motion has 1 % too much
 // translation and 0.1 deg too much yaw, and scans go into the submaps at the drifted poses, so
 // submaps and nodes are consistently wrong, as they are after real local SLAM.
-RunResult RunGraph(int num_nodes, int optimize_every_n_nodes, common::Executor* executor) {
+RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Executor* executor) {
   const std::vector<Segment> walls = Room();
   mapping::SubmapsOptions submap_options;
   submap_options.num_range_data = 10;
@@ -57,7 +57,7 @@ RunResult RunGraph(int num_nodes, int optimize_every_n_nodes, common::Executor* 
   filter.min_num_points = 100;
 
   RunResult result;
-  PoseGraph2D graph(TestOptions(optimize_every_n_nodes), executor);
+  PoseGraph2D graph(options, executor);
   graph.AddSubmapsMovedCallback([&result](const std::vector<SubmapMove>& moves) {
     ++result.callbacks;
     result.moved_submaps += static_cast<int>(moves.size());
@@ -82,6 +82,10 @@ RunResult RunGraph(int num_nodes, int optimize_every_n_nodes, common::Executor* 
   result.T_map_nodes = graph.Snapshot()->T_map_nodes;
   EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
   return result;
+}
+
+RunResult RunGraph(int num_nodes, int optimize_every_n_nodes, common::Executor* executor) {
+  return RunGraph(num_nodes, TestOptions(optimize_every_n_nodes), executor);
 }
 
 // End-point error after expressing both trajectories relative to their first pose.
@@ -138,6 +142,21 @@ TEST(PoseGraph2DTest, ThreadPoolRunFindsLoopClosures) {
   EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
 }
 
+TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::InlineExecutor executor;
+  PoseGraphOptions2D options = TestOptions(10);
+  options.loop_closure_verification.min_agreeing_closures = 2;
+  const RunResult unverified = RunGraph(num_nodes, 10, &executor);
+  const RunResult run = RunGraph(num_nodes, options, &executor);
+  std::printf("loop closures %d verified of %d (%d left unverified)\n",
+              run.stats.loop_closures_found, unverified.stats.loop_closures_found,
+              run.stats.loop_closure_candidates);
+  // Right matches of neighbouring nodes agree, so most are accepted.
+  EXPECT_GT(run.stats.loop_closures_found, unverified.stats.loop_closures_found / 2);
+  EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
+}
+
 TEST(PoseGraph2DTest, OptionsValidation) {
   std::string error;
   PoseGraphOptions2D options;
@@ -146,6 +165,9 @@ TEST(PoseGraph2DTest, OptionsValidation) {
   EXPECT_FALSE(options.IsValid(&error));
   options.optimize_every_n_nodes = 10;
   options.matcher_rotation_weight = 0.0;
+  EXPECT_FALSE(options.IsValid(&error));
+  options.matcher_rotation_weight = 1.0;
+  options.loop_closure_verification.max_node_gap = 0;
   EXPECT_FALSE(options.IsValid(&error));
 }
 

@@ -303,10 +303,11 @@ int Run(const Args& args) {
   std::printf(
       "global_slam: nodes=%d submaps=%d loop_closure_searches=%d loop_closures_accepted=%d "
       "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f "
-      "trimmed_submaps=%d trimmed_nodes=%d\n",
+      "trimmed_submaps=%d trimmed_nodes=%d loop_closures_unverified=%d\n",
       global.nodes, global.submaps, global.loop_closure_searches, global.loop_closures_found,
       global.optimizations, global.loop_closure_search_s, global.precomputation_s,
-      global.optimization_s, global.trimmed_submaps, global.trimmed_nodes);
+      global.optimization_s, global.trimmed_submaps, global.trimmed_nodes,
+      global.loop_closure_candidates);
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);

@@ -12,6 +12,7 @@
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/mapping/submap_2d.h"
 #include "fusemap/pose_graph/constraint_builder_2d.h"
+#include "fusemap/pose_graph/loop_closure_verifier_2d.h"
 #include "fusemap/pose_graph/moved_submaps.h"
 #include "fusemap/pose_graph/optimization_options.h"
 #include "fusemap/pose_graph/overlapping_submaps_trimmer_2d.h"
@@ -33,6 +34,7 @@ struct PoseGraphOptions2D {
   double local_slam_rotation_weight = 1e5;
   int final_optimization_iterations = 200;
   OverlappingSubmapsTrimmerOptions2D overlapping_submaps_trimmer;  // off by default
+  LoopClosureVerificationOptions2D loop_closure_verification;      // off by default
 
   PoseGraphOptions2D();
   bool IsValid(std::string* error) const;
@@ -40,7 +42,7 @@ struct PoseGraphOptions2D {
 
 // Keys: optimize_every_n_nodes, constraint_builder, optimization, matcher_translation_weight,
 // matcher_rotation_weight, local_slam_translation_weight, local_slam_rotation_weight,
-// final_optimization_iterations, overlapping_submaps_trimmer.
+// final_optimization_iterations, overlapping_submaps_trimmer, loop_closure_verification.
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader);
 
 // A loop-closure search queued but not yet finished: node against submap, from the estimate.
@@ -81,6 +83,9 @@ class PoseGraph2D {
     int trimmed_submaps = 0;
     int trimmed_nodes = 0;
     int constraints = 0;  // node-in-submap constraints in the graph now (not checkpointed)
+    // Matches waiting for loop-closure verification now (not checkpointed; included in
+    // constraints, not in loop_closures_found).
+    int loop_closure_candidates = 0;
     double loop_closure_search_s = 0.0;
     double precomputation_s = 0.0;
     double optimization_s = 0.0;
@@ -158,6 +163,9 @@ class PoseGraph2D {
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
   void QueueSearchLocked(const PendingSearch2D& search);
+  // Adds a found match: at once, or with verification on as a candidate that is accepted
+  // (together with the candidates it confirms) once enough closures agree with it.
+  void AddLoopClosureLocked(const Constraint2D& constraint);
   // Builds the precomputation grids of finished submap `s`, then queues `searches`, and with
   // `search_all_nodes` a search of every node near it.
   std::function<void()> MakeMatcherTask(int s, std::shared_ptr<const mapping::Submap2D> submap,

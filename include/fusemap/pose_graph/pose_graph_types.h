@@ -13,8 +13,9 @@ namespace pose_graph {
 // Node `node` observed in submap `submap`: the pose of the node in the submap frame, from local
 // SLAM (kIntraSubmap) or from a scan match against a finished submap (kInterSubmap, a loop
 // closure). Residual = weights .* (T_submap_node ⊖ T_map_submap^-1 * T_map_node).
+// kLoopClosureCandidate: a match waiting for loop-closure verification; not optimised.
 struct Constraint2D {
-  enum Tag { kIntraSubmap, kInterSubmap };
+  enum Tag { kIntraSubmap, kInterSubmap, kLoopClosureCandidate };
 
   int submap = 0;
   int node = 0;

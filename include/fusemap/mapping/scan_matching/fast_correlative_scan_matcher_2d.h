@@ -22,6 +22,13 @@ struct FastCorrelativeScanMatcherOptions2D {
   int branch_and_bound_depth = 7;
   // The threshold callers (the constraint builder) pass to Match for local searches.
   double min_score = 0.55;
+  // Prior on the search centre for Match (not MatchFullSubmap), as in the real-time
+  // correlative matcher: the search maximises score * exp(-(w_t * d_m + w_r * |a_rad|)^2) for
+  // a candidate's offset d_m and turn a_rad from the centre. min_score and the score returned
+  // are the chosen candidate's own score, without the prior. 0 and 0 (the defaults) search as
+  // without a prior.
+  double translation_delta_cost_weight = 0.0;
+  double rotation_delta_cost_weight = 0.0;
 
   bool IsValid(std::string* error) const;
 };
@@ -55,15 +62,16 @@ class FastCorrelativeScanMatcher2D {
  private:
   bool MatchWithSearchParameters(SearchParameters params, const common::Rigid2d& initial_pose,
                                  const sensor::PointCloud2d& cloud, double min_score,
-                                 double* score, common::Rigid2d* pose) const;
+                                 bool with_prior, double* score, common::Rigid2d* pose) const;
   std::vector<Candidate2D> ComputeLowestResolutionCandidates(
-      const std::vector<DiscreteScan2D>& scans, const SearchParameters& params) const;
+      const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
+      bool with_prior) const;
   void ScoreCandidates(const PrecomputationGrid2D& grid, const std::vector<DiscreteScan2D>& scans,
-                       std::vector<Candidate2D>* candidates) const;
+                       bool with_prior, std::vector<Candidate2D>* candidates) const;
   Candidate2D BranchAndBound(const std::vector<DiscreteScan2D>& scans,
                              const SearchParameters& params,
                              const std::vector<Candidate2D>& candidates, int depth,
-                             double min_score) const;
+                             double min_score, bool with_prior) const;
 
   MapLimits limits_;
   FastCorrelativeScanMatcherOptions2D options_;

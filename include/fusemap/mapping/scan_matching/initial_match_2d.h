@@ -48,8 +48,9 @@ struct InitialMatchOptions2D {
 
 // Keys: enabled, matching_resolution_m, unknown_probability, unknown_padding_m, min_score_gain,
 // near_linear_search_window_m, near_angular_search_window_rad, refresh_every_n_insertions,
-// linear_search_window_m, angular_search_window_rad, branch_and_bound_depth, min_score (the
-// last four as in fast_correlative_scan_matcher).
+// linear_search_window_m, angular_search_window_rad, branch_and_bound_depth, min_score,
+// translation_delta_cost_weight, rotation_delta_cost_weight (the last six as in
+// fast_correlative_scan_matcher; the prior is on the extrapolated pose).
 InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader);
 
 // `grid` coarsened by `factor` (>= 1) per axis, each coarse cell holding the most occupied of
