@@ -1,5 +1,6 @@
 // fusemap_tagscore: AprilTag detection, tag ground truth from an LCM log, trajectory scoring.
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -226,7 +227,13 @@ int Score(const std::map<std::string, std::string>& flags) {
   info.est_path = flags.at("--est");
   if (!io::WriteScoreReport(flags.at("--report"), score, info, &error)) return Fail(error);
   for (const auto& f : io::ReportFigures(score)) {
-    std::printf("%-40s %12.6g %s\n", f.label.c_str(), f.value, f.unit.c_str());
+    // Not finite: the figure does not apply (a run that never returns to its start has no
+    // loop-closure error), as the HTML report says.
+    if (std::isfinite(f.value)) {
+      std::printf("%-40s %12.6g %s\n", f.label.c_str(), f.value, f.unit.c_str());
+    } else {
+      std::printf("%-40s %12s\n", f.label.c_str(), "n/a");
+    }
   }
   std::printf("report: %s/index.html\n", flags.at("--report").c_str());
   return 0;
