@@ -189,7 +189,8 @@ void Engine::ArchiveSettled() {
   const auto nodes = builder_->pose_graph().TrimmedNodes();
   std::string error;
   if (!archive_->Append(nodes, &odometry_, &error)) {
-    ++archive_failures_;
+    // Health counts it with the checkpoints: both are the run's state not reaching the disk.
+    ++checkpoint_failures_;
     if (log_ != nullptr) log_->Report("trajectory archive", error);
     return;
   }

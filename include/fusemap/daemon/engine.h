@@ -129,7 +129,6 @@ class Engine {
   int cloud_seen_submaps_ = -1;
   std::vector<sensor::OdometryData> odometry_;
   std::unique_ptr<io::TrajectoryArchive> archive_;
-  std::atomic<int> archive_failures_{0};
   std::chrono::steady_clock::time_point last_checkpoint_;
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};

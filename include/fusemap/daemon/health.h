@@ -68,7 +68,8 @@ struct HealthReport {
   int trimmed_submaps = 0;
   int loop_closures = 0;
   int optimizations = 0;
-  // Checkpoints that could not be written, and time resets of the input (see Intake).
+  // Checkpoints or trajectory-archive appends that could not be written, and time resets of
+  // the input (see Intake).
   int checkpoint_failures = 0;
   int64_t time_resets = 0;
 };
