@@ -260,7 +260,8 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   if (!in->Count(kNodeBytes, &n)) return false;
   g.nodes.resize(n);
   for (auto& node : g.nodes) {
-    if (!in->I32(&node.index) || !in->F64(&node.stamp_s) || !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
+    if (!in->I32(&node.index) || !in->F64(&node.stamp_s) ||
+        !DecodeRigid2d(in, &node.T_local_node) || !in->Count(8, &n)) {
       return false;
     }
     node.cloud.resize(n);

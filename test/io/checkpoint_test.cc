@@ -168,7 +168,8 @@ TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
     graph.T_map_nodes.erase(graph.T_map_nodes.begin() + n);
   }
   ASSERT_GE(gone, 0);
-  contents.odometry = {{2.5, common::Rigid2d({1.0, 2.0}, 0.3)}, {2.6, common::Rigid2d({1.1, 2.0}, 0.31)}};
+  contents.odometry = {{2.5, common::Rigid2d({1.0, 2.0}, 0.3)},
+                       {2.6, common::Rigid2d({1.1, 2.0}, 0.31)}};
   contents.archive.nodes_bytes = 1234;
   contents.archive.last_odometry_stamp_s = 2.4;
   const std::string bytes = EncodeCheckpoint(contents, true);

@@ -66,7 +66,8 @@ void ArchiveInSteps(const DriveRun& run, size_t period, TrajectoryArchive* archi
   record->assign(run.odometry.begin() + next_odometry, run.odometry.end());
 }
 
-void ExpectBitForBit(const std::vector<TimedPose2d>& expected, const std::vector<TimedPose2d>& actual) {
+void ExpectBitForBit(const std::vector<TimedPose2d>& expected,
+                     const std::vector<TimedPose2d>& actual) {
   ASSERT_EQ(actual.size(), expected.size());
   for (size_t i = 0; i < actual.size(); ++i) {
     EXPECT_EQ(actual[i].stamp_s, expected[i].stamp_s) << i;
@@ -181,7 +182,8 @@ TEST(TrajectoryArchiveTest, FailedAppendChangesNothingAndCanBeRetried) {
   const TrajectoryArchiveMark before = archive->mark();
 
   record.assign(run.odometry.begin() + 10, run.odometry.begin() + 200);
-  const std::vector<pose_graph::ArchivedNode2D> nodes = {{1, run.nodes[1].stamp_s, run.nodes[1].pose}};
+  const std::vector<pose_graph::ArchivedNode2D> nodes = {
+      {1, run.nodes[1].stamp_s, run.nodes[1].pose}};
   std::signal(SIGXFSZ, SIG_IGN);
   rlimit saved{};
   ASSERT_EQ(getrlimit(RLIMIT_FSIZE, &saved), 0);

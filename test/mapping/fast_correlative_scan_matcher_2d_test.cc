@@ -83,21 +83,34 @@ ProbabilityGrid MakeRandomGrid(int num_x, int num_y, bool smooth, std::mt19937* 
   return grid;
 }
 
-TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundEqualsBruteForce) {
-  for (unsigned seed = 1; seed <= 12; ++seed) {
-    SCOPED_TRACE(seed);
-    std::mt19937 rng(seed);
-    const ProbabilityGrid grid = MakeRandomGrid(60, 50, /*smooth=*/seed % 3 != 0, &rng);
+// A random grid (smooth for two seeds in three), 40 random points and a random start, with a
+// search window the brute force can cover.
+struct RandomMatchProblem {
+  explicit RandomMatchProblem(unsigned seed)
+      : rng(seed), grid(MakeRandomGrid(60, 50, /*smooth=*/seed % 3 != 0, &rng)) {
     std::uniform_real_distribution<double> coordinate(-0.2, 1.8);
     std::uniform_real_distribution<double> angle(-common::kPi, common::kPi);
     std::uniform_real_distribution<float> offset(-1.2f, 1.2f);
-    sensor::PointCloud2d cloud;
     for (int i = 0; i < 40; ++i) cloud.emplace_back(offset(rng), offset(rng));
-    const common::Rigid2d initial(coordinate(rng), coordinate(rng) - 0.5, angle(rng));
-
-    FastCorrelativeScanMatcherOptions2D options;
+    initial = common::Rigid2d(coordinate(rng), coordinate(rng) - 0.5, angle(rng));
     options.linear_search_window_m = 0.6;
     options.angular_search_window_rad = common::DegToRad(8.0);
+  }
+  std::mt19937 rng;
+  ProbabilityGrid grid;
+  sensor::PointCloud2d cloud;
+  common::Rigid2d initial;
+  FastCorrelativeScanMatcherOptions2D options;
+};
+
+TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundEqualsBruteForce) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    const RandomMatchProblem problem(seed);
+    const ProbabilityGrid& grid = problem.grid;
+    const sensor::PointCloud2d& cloud = problem.cloud;
+    const common::Rigid2d& initial = problem.initial;
+    FastCorrelativeScanMatcherOptions2D options = problem.options;
     // Depth 2 splits the window finely; depth 6 has top-level windows wider than the search.
     for (int depth : {2, 4, 6}) {
       SCOPED_TRACE(depth);
@@ -175,18 +188,11 @@ PriorBruteForceResult BruteForceWithPrior(const ProbabilityGrid& grid,
 TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundWithPriorEqualsBruteForce) {
   for (unsigned seed = 1; seed <= 12; ++seed) {
     SCOPED_TRACE(seed);
-    std::mt19937 rng(seed);
-    const ProbabilityGrid grid = MakeRandomGrid(60, 50, /*smooth=*/seed % 3 != 0, &rng);
-    std::uniform_real_distribution<double> coordinate(-0.2, 1.8);
-    std::uniform_real_distribution<double> angle(-common::kPi, common::kPi);
-    std::uniform_real_distribution<float> offset(-1.2f, 1.2f);
-    sensor::PointCloud2d cloud;
-    for (int i = 0; i < 40; ++i) cloud.emplace_back(offset(rng), offset(rng));
-    const common::Rigid2d initial(coordinate(rng), coordinate(rng) - 0.5, angle(rng));
-
-    FastCorrelativeScanMatcherOptions2D options;
-    options.linear_search_window_m = 0.6;
-    options.angular_search_window_rad = common::DegToRad(8.0);
+    const RandomMatchProblem problem(seed);
+    const ProbabilityGrid& grid = problem.grid;
+    const sensor::PointCloud2d& cloud = problem.cloud;
+    const common::Rigid2d& initial = problem.initial;
+    FastCorrelativeScanMatcherOptions2D options = problem.options;
     options.translation_delta_cost_weight = 0.5 + 0.2 * (seed % 4);
     options.rotation_delta_cost_weight = 3.0 * (seed % 3);
     for (int depth : {2, 4, 6}) {
