@@ -21,11 +21,13 @@ struct BruteForceResult {
   std::vector<common::Rigid2d> best_poses;  // every candidate reaching best_sum
 };
 
-// Scores every candidate the matcher's search would contain (same angles, same integer cell
-// offsets, same quantised values), with no pyramid.
-BruteForceResult BruteForce(const ProbabilityGrid& grid, const common::Rigid2d& initial_pose,
-                            const sensor::PointCloud2d& cloud, double linear_window_m,
-                            double angular_window_rad) {
+// Visits every candidate the matcher's search would contain (same angles, same integer cell
+// offsets, same quantised values), with no pyramid: visit(candidate, pose, sum of the
+// precomputation values of its cells, number of cells).
+template <typename Visit>
+void ForEachCandidate(const ProbabilityGrid& grid, const common::Rigid2d& initial_pose,
+                      const sensor::PointCloud2d& cloud, double linear_window_m,
+                      double angular_window_rad, Visit visit) {
   SearchParameters params(linear_window_m, angular_window_rad, cloud, grid.limits().resolution_m);
   const Eigen::Matrix2f rotation =
       Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
@@ -34,7 +36,6 @@ BruteForceResult BruteForce(const ProbabilityGrid& grid, const common::Rigid2d& 
   const std::vector<DiscreteScan2D> scans = DiscretizeScans(
       grid.limits(), GenerateRotatedScans(rotated, params), initial_pose.translation().cast<float>());
   params.ShrinkToFit(scans, grid.limits());
-  BruteForceResult result;
   for (int i = 0; i < params.num_scans; ++i) {
     const SearchParameters::LinearBounds& b = params.linear_bounds[i];
     for (int x = b.min_x; x <= b.max_x; ++x) {
@@ -43,15 +44,28 @@ BruteForceResult BruteForce(const ProbabilityGrid& grid, const common::Rigid2d& 
         for (const Eigen::Array2i& cell : scans[i]) {
           sum += ProbabilityToPrecomputationValue(grid.GetProbability(cell + Eigen::Array2i(x, y)));
         }
-        if (sum < result.best_sum) continue;
-        if (sum > result.best_sum) result.best_poses.clear();
-        result.best_sum = sum;
         const Candidate2D c(i, x, y, params);
-        result.best_poses.emplace_back(initial_pose.translation() + Eigen::Vector2d(c.x_m, c.y_m),
-                                       initial_pose.angle_rad() + c.angle_rad);
+        visit(c,
+              common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(c.x_m, c.y_m),
+                              initial_pose.angle_rad() + c.angle_rad),
+              sum, static_cast<int>(scans[i].size()));
       }
     }
   }
+}
+
+// The best sum over every candidate, and every candidate reaching it.
+BruteForceResult BruteForce(const ProbabilityGrid& grid, const common::Rigid2d& initial_pose,
+                            const sensor::PointCloud2d& cloud, double linear_window_m,
+                            double angular_window_rad) {
+  BruteForceResult result;
+  ForEachCandidate(grid, initial_pose, cloud, linear_window_m, angular_window_rad,
+                   [&result](const Candidate2D&, const common::Rigid2d& pose, long sum, int) {
+                     if (sum < result.best_sum) return;
+                     if (sum > result.best_sum) result.best_poses.clear();
+                     result.best_sum = sum;
+                     result.best_poses.push_back(pose);
+                   });
   return result;
 }
 
@@ -148,38 +162,19 @@ PriorBruteForceResult BruteForceWithPrior(const ProbabilityGrid& grid,
                                           const common::Rigid2d& initial_pose,
                                           const sensor::PointCloud2d& cloud,
                                           const FastCorrelativeScanMatcherOptions2D& options) {
-  SearchParameters params(options.linear_search_window_m, options.angular_search_window_rad,
-                          cloud, grid.limits().resolution_m);
-  const Eigen::Matrix2f rotation =
-      Eigen::Rotation2Df(static_cast<float>(initial_pose.angle_rad())).matrix();
-  sensor::PointCloud2d rotated;
-  for (const Eigen::Vector2f& p : cloud) rotated.push_back(rotation * p);
-  const std::vector<DiscreteScan2D> scans = DiscretizeScans(
-      grid.limits(), GenerateRotatedScans(rotated, params), initial_pose.translation().cast<float>());
-  params.ShrinkToFit(scans, grid.limits());
   PriorBruteForceResult result;
-  for (int i = 0; i < params.num_scans; ++i) {
-    const SearchParameters::LinearBounds& b = params.linear_bounds[i];
-    for (int x = b.min_x; x <= b.max_x; ++x) {
-      for (int y = b.min_y; y <= b.max_y; ++y) {
-        long sum = 0;
-        for (const Eigen::Array2i& cell : scans[i]) {
-          sum += ProbabilityToPrecomputationValue(grid.GetProbability(cell + Eigen::Array2i(x, y)));
-        }
-        const Candidate2D c(i, x, y, params);
+  ForEachCandidate(
+      grid, initial_pose, cloud, options.linear_search_window_m, options.angular_search_window_rad,
+      [&](const Candidate2D& c, const common::Rigid2d& pose, long sum, int num_cells) {
         const double cost = std::hypot(c.x_m, c.y_m) * options.translation_delta_cost_weight +
                             std::abs(c.angle_rad) * options.rotation_delta_cost_weight;
-        const double match_score = PrecomputationScore(sum, static_cast<int>(scans[i].size()));
+        const double match_score = PrecomputationScore(sum, num_cells);
         const double score = match_score * std::exp(-cost * cost);
-        if (score <= result.best_score) continue;
+        if (score <= result.best_score) return;
         result.best_score = score;
         result.match_score = match_score;
-        result.best_pose = common::Rigid2d(
-            initial_pose.translation() + Eigen::Vector2d(c.x_m, c.y_m),
-            initial_pose.angle_rad() + c.angle_rad);
-      }
-    }
-  }
+        result.best_pose = pose;
+      });
   return result;
 }
 
