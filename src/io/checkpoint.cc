@@ -16,6 +16,7 @@
 #include "fusemap/io/byte_buffer.h"
 #include "fusemap/io/map_builder_state_codec.h"
 #include "fusemap/io/submap_state_codec.h"
+#include "fusemap/io/write_all.h"
 
 namespace fusemap {
 namespace io {
@@ -42,17 +43,6 @@ uint32_t Crc32(const char* data, size_t size) {
 
 std::string Errno(const std::string& what, const std::string& path) {
   return what + " " + path + ": " + std::strerror(errno);
-}
-
-bool WriteAll(int fd, const std::string& bytes) {
-  size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<size_t>(n);
-  }
-  return true;
 }
 
 bool FsyncDirectoryOf(const std::string& path, std::string* error) {

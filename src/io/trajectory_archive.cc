@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "fusemap/io/byte_buffer.h"
+#include "fusemap/io/write_all.h"
 
 namespace fusemap {
 namespace io {
@@ -77,15 +78,9 @@ struct TrajectoryArchive::Files {
     }
   }
   bool Append(int i, const std::string& bytes, std::uint64_t* length, std::string* error) {
-    size_t done = 0;
-    while (done < bytes.size()) {
-      const ssize_t n = ::write(fd[i], bytes.data() + done, bytes.size() - done);
-      if (n < 0 && errno == EINTR) continue;
-      if (n <= 0) {
-        *error = Errno(path[i], "write failed");
-        return false;
-      }
-      done += static_cast<size_t>(n);
+    if (!WriteAll(fd[i], bytes)) {
+      *error = Errno(path[i], "write failed");
+      return false;
     }
     if (!bytes.empty() && ::fsync(fd[i]) != 0) {
       *error = Errno(path[i], "fsync failed");
@@ -93,6 +88,10 @@ struct TrajectoryArchive::Files {
     }
     *length += bytes.size();
     return true;
+  }
+  // Cuts file i back to `length` bytes and appends from there.
+  bool CutBack(int i, std::uint64_t length) {
+    return ::ftruncate(fd[i], static_cast<off_t>(length)) == 0 && ::lseek(fd[i], 0, SEEK_END) >= 0;
   }
 };
 
@@ -137,8 +136,7 @@ std::unique_ptr<TrajectoryArchive> TrajectoryArchive::Open(const std::string& di
     }
     // Whatever was appended after the checkpoint was written is cut off again: the restored
     // state appends it anew.
-    if (::ftruncate(files->fd[i], static_cast<off_t>(*lengths[i])) != 0 ||
-        ::lseek(files->fd[i], 0, SEEK_END) < 0) {
+    if (!files->CutBack(i, *lengths[i])) {
       *error = Errno(files->path[i], "cannot cut back to the checkpoint");
       return nullptr;
     }
@@ -161,8 +159,7 @@ bool TrajectoryArchive::Append(const std::vector<pose_graph::ArchivedNode2D>& no
     mark_ = before;
     const std::uint64_t lengths[2] = {before.nodes_bytes, before.odometry_bytes};
     for (int i = 0; i < 2; ++i) {
-      if (::ftruncate(files_->fd[i], static_cast<off_t>(lengths[i])) != 0 ||
-          ::lseek(files_->fd[i], 0, SEEK_END) < 0) {
+      if (!files_->CutBack(i, lengths[i])) {
         *error += "; and " + Errno(files_->path[i], "cannot cut back");
       }
     }

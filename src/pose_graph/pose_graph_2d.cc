@@ -177,12 +177,11 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
 
 void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
   const LoopClosureVerificationOptions2D& verification = options_.loop_closure_verification;
+  constraints_.push_back(constraint);
   if (!verification.enabled()) {
-    constraints_.push_back(constraint);
     ++stats_.loop_closures_found;
     return;
   }
-  constraints_.push_back(constraint);
   constraints_.back().tag = Constraint2D::kLoopClosureCandidate;
   // Every match so far, candidate or accepted, in local SLAM's frame, which nothing moves.
   std::vector<ClosureView2D> views;

@@ -48,7 +48,7 @@ void PoseGraph2D::RestoreState(
     for (const auto& node : state.nodes) {
       nodes_.push_back(
           {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
-         node.trimmed});
+           node.trimmed});
     }
     for (size_t s = 0; s < submaps.size(); ++s) {
       SubmapData data;

@@ -25,15 +25,15 @@ class Publisher {
   virtual void PublishHealth(double stamp_s, const HealthReport& report) = 0;
 };
 
-// Where "write the state every checkpoint_period_s and at shutdown" plugs in. Save is called
-// on the local SLAM thread between two messages (no scan in flight), after waiting for the
-// executor to be idle, so the builder's state is consistent.
 // What a checkpoint holds besides the builder's state; null members are stored empty.
 struct RunRecord {
   const std::vector<sensor::OdometryData>* odometry = nullptr;
   const io::TrajectoryArchiveMark* archive = nullptr;
 };
 
+// Where "write the state every checkpoint_period_s and at shutdown" plugs in. Save is called
+// on the local SLAM thread between two messages (no scan in flight), after waiting for the
+// executor to be idle, so the builder's state is consistent.
 class Checkpointer {
  public:
   virtual ~Checkpointer() = default;
