@@ -403,6 +403,8 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
   }
   im.last_output_s = p.stamp_s;
   *out = std::move(p.record);
+  out->log_stamp_s = im.time_field >= 0 ? p.printed_s : NAN;
+  out->log_stamp_resolution_s = im.time_field >= 0 ? p.resolution_s : 0.0;
   if (out->kind == CarmenRecord::Kind::kLaser) {
     out->scan.stamp_s = p.stamp_s;
     ++summary_.lasers;

@@ -192,6 +192,7 @@ TEST(CarmenReaderTest, AllZeroTimestampsAreSynthesizedFromLineOrder) {
   const std::vector<double> expected_s = {0.0, 0.0, 0.25, 0.25};
   for (size_t i = 0; i < records.size(); ++i) {
     EXPECT_DOUBLE_EQ(StampOf(records[i]), expected_s[i]) << "record " << i;
+    EXPECT_TRUE(std::isnan(records[i].log_stamp_s)) << "no log clock to refer to";
   }
   EXPECT_FLOAT_EQ(records[1].scan.range_max_m, 10.f);
   EXPECT_EQ(summary.range_max_source, "option");
@@ -247,6 +248,10 @@ TEST(CarmenReaderTest, KeepsFileOrderAndRepairsLateStampsSoTheyNeverDecrease) {
   EXPECT_NEAR(StampOf(records[1]), 0.5 * (1.8 + 1.9 - 5e-6), 1e-12);
   EXPECT_DOUBLE_EQ(StampOf(records[3]), 1.9);  // the scan keeps its own stamp
   EXPECT_EQ(summary.clamped_stamps, 0);
+  // What the log printed stays with each record, for ground truth on the log's clock.
+  EXPECT_DOUBLE_EQ(records[1].log_stamp_s, 2.0);
+  EXPECT_DOUBLE_EQ(records[2].log_stamp_s, 1.9);
+  EXPECT_GT(records[1].log_stamp_resolution_s, 0.0);
   std::remove(path.c_str());
 }
 
@@ -277,6 +282,10 @@ TEST(CarmenReaderTest, SpreadsRecordsThatPrintTheSameRoundedStamp) {
     EXPECT_NEAR(StampOf(records[i]), expected[i], 1e-9) << "record " << i;
   }
   EXPECT_EQ(records[4].kind, CarmenRecord::Kind::kLaser);
+  for (size_t i = 1; i <= 4; ++i) {
+    EXPECT_DOUBLE_EQ(records[i].log_stamp_s, 1401.34) << "record " << i;
+    EXPECT_DOUBLE_EQ(records[i].log_stamp_resolution_s, 0.01) << "record " << i;
+  }
   EXPECT_EQ(summary.spread_stamps, 4);
   EXPECT_EQ(summary.repaired_stamps, 0);
   EXPECT_NE(summary.ToString().find("spread_stamps=4"), std::string::npos);

@@ -10,22 +10,27 @@
 #include "fusemap/io/carmen_reader.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
+#include "fusemap/io/stamp_map_file.h"
 
 namespace {
 
 constexpr char kUsage[] =
     "usage: fusemap_carmen2lcm INPUT OUTPUT.lcm [--skip-bad] [--range-max M]\n"
     "                          [--laser-channel LIDAR] [--odom-channel ODOMETRY]\n"
+    "                          [--stamp-map FILE]\n"
     "  INPUT          CARMEN log (FLASER, ROBOTLASER1, ODOM lines), plain or .gz\n"
     "  --skip-bad     skip and count malformed lines instead of failing\n"
     "  --range-max M  FLASER no-return threshold in metres (default: detected)\n"
+    "  --stamp-map FILE  also write each odometry record's output stamp beside the stamp\n"
+    "                 the log printed, so ground truth on the log's clock can be looked up\n"
+    "                 in trajectory.tum (fusemap_eval relations --stamp-map)\n"
     "Scans: beam i at -90 deg + i * 180 deg / (N - N%2), i.e. 180/181 beams at 1 deg.\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
   fusemap::io::CarmenOptions options;
-  std::string laser_channel = "LIDAR", odom_channel = "ODOMETRY";
+  std::string laser_channel = "LIDAR", odom_channel = "ODOMETRY", stamp_map_path;
   std::string positional[2];
   int n_positional = 0;
   for (int i = 1; i < argc; ++i) {
@@ -47,6 +52,8 @@ int main(int argc, char** argv) {
       laser_channel = argv[++i];
     } else if (arg == "--odom-channel" && has_value) {
       odom_channel = argv[++i];
+    } else if (arg == "--stamp-map" && has_value) {
+      stamp_map_path = argv[++i];
     } else if (!arg.empty() && arg[0] != '-' && n_positional < 2) {
       positional[n_positional++] = arg;
     } else {
@@ -62,6 +69,16 @@ int main(int argc, char** argv) {
   std::string error;
   fusemap::io::CarmenReader reader(options);
   if (!reader.Open(positional[0], &error)) {
+    std::cerr << error << "\n";
+    return 1;
+  }
+  if (!stamp_map_path.empty() && reader.summary().time_policy == "synthesized") {
+    std::cerr << "--stamp-map: " << positional[0] << " has no usable stamps ("
+              << reader.summary().time_reason << "); time is synthesized from line order\n";
+    return 1;
+  }
+  fusemap::io::StampMapWriter stamp_map;
+  if (!stamp_map_path.empty() && !stamp_map.Open(stamp_map_path, &error)) {
     std::cerr << error << "\n";
     return 1;
   }
@@ -87,18 +104,32 @@ int main(int argc, char** argv) {
       error = positional[1] + ": write failed";
       break;
     }
+    // Odometry only: a relation's pose is looked up in trajectory.tum, sampled at the odometry.
+    if (!stamp_map_path.empty() && record.kind == fusemap::io::CarmenRecord::Kind::kOdometry &&
+        !stamp_map.Add(
+            {record.odometry.stamp_s, record.log_stamp_s, record.log_stamp_resolution_s})) {
+      error = stamp_map_path + ": write failed";
+      break;
+    }
     if (writer.num_written() % 10000 == 0) {
       std::cerr << "  " << writer.num_written() << " messages, line " << record.line << "\n";
     }
   }
   writer.Close();
+  std::string close_error;
+  if (!stamp_map_path.empty() && !stamp_map.Close(&close_error) && error.empty()) {
+    error = close_error;
+  }
   if (!error.empty()) {
     std::cerr << error << "\n";
     std::remove(positional[1].c_str());  // no half-converted output
+    if (!stamp_map_path.empty()) std::remove(stamp_map_path.c_str());
     return 1;
   }
   const fusemap::io::CarmenSummary& s = reader.summary();
   for (const std::string& reason : s.first_skip_reasons) std::cerr << "skipped " << reason << "\n";
-  std::cout << s.ToString() << " wrote=" << positional[1] << "\n";
+  std::cout << s.ToString() << " wrote=" << positional[1];
+  if (!stamp_map_path.empty()) std::cout << " stamp_map=" << stamp_map_path;
+  std::cout << "\n";
   return 0;
 }

@@ -11,6 +11,7 @@
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/relative_pose_error.h"
 #include "fusemap/io/relations_file.h"
+#include "fusemap/io/stamp_map_file.h"
 #include "fusemap/io/tum_trajectory.h"
 
 namespace fusemap {
@@ -26,12 +27,14 @@ constexpr char kUsage[] =
 
 constexpr char kRelationsUsage[] =
     "usage: fusemap_eval relations --relations FILE --trajectory TUM [--time-offset S]\n"
-    "                              [--max-time-gap S]\n"
+    "                              [--max-time-gap S] [--stamp-map FILE]\n"
     "  --relations FILE   lines 't1 t2 dx dy dz droll dpitch dyaw' (true motion t1 -> t2)\n"
     "  --trajectory TUM   estimated trajectory, 't x y z qx qy qz qw' per line\n"
     "  --time-offset S    subtracted from relation stamps (default 0)\n"
     "  --max-time-gap S   max distance from a relation stamp to a trajectory sample\n"
     "                     (default 0.05); poses between samples are interpolated\n"
+    "  --stamp-map FILE   relation stamps are on the raw log's clock: look them up at the\n"
+    "                     records that printed them (fusemap_carmen2lcm --stamp-map)\n"
     "Last line: trans_mean_m=... trans_std_m=... rot_mean_deg=... rot_std_deg=...\n";
 
 constexpr char kAteUsage[] =
@@ -110,7 +113,8 @@ int RunRelations(int argc, char** argv) {
   std::string error, relations_path, trajectory_path;
   double time_offset_s = 0.0;
   double max_time_gap_s = eval::kDefaultRelationMaxTimeGapS;
-  if (!ParseArgs(argc, argv, {"--relations", "--trajectory", "--time-offset", "--max-time-gap"}, {},
+  if (!ParseArgs(argc, argv, {"--relations", "--trajectory", "--time-offset", "--max-time-gap", "--stamp-map"},
+                 {},
                  &args, &error)) {
     return Fail(error, kRelationsUsage);
   }
@@ -131,6 +135,15 @@ int RunRelations(int argc, char** argv) {
       !io::ReadTumTrajectoryFile(trajectory_path, &trajectory, &error)) {
     std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
     return 1;
+  }
+  auto stamp_map = args.values.find("--stamp-map");
+  if (stamp_map != args.values.end()) {
+    std::string summary;
+    if (!io::MapRelationsThroughStampMapFile(stamp_map->second, &relations, &summary, &error)) {
+      std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
+      return 1;
+    }
+    std::printf("%s\n", summary.c_str());
   }
   const eval::RelationError r = eval::EvaluateRelations(trajectory, relations, max_time_gap_s);
   std::printf("relations=%zu used=%d skipped=%d trajectory_poses=%zu\n", relations.size(),

@@ -19,6 +19,7 @@
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
 #include "fusemap/io/relations_file.h"
+#include "fusemap/io/stamp_map_file.h"
 #include "fusemap/io/rgbd_conversions.h"
 #include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
@@ -50,6 +51,8 @@ constexpr char kUsage[] =
     "  --relations FILE    also print the Kuemmerle et al. (2009) relation error of\n"
     "                      DIR/trajectory.tum against FILE (as fusemap_eval relations)\n"
     "  --relations-time-offset S  seconds subtracted from the relation stamps\n"
+    "  --relations-stamp-map FILE  relation stamps are on the raw log's clock: look them up\n"
+    "                      at the records that printed them (fusemap_carmen2lcm --stamp-map)\n"
     "  --calibrate-odometry  fit the wheel odometry's systematic errors (distance scale,\n"
     "                      rotation scale, heading drift per metre) to the optimised node-to-node\n"
     "                      motion and densify DIR/trajectory.tum with the corrected odometry;\n"
@@ -66,6 +69,7 @@ struct Args {
   bool quiet = false;
   std::string relations;
   double relations_time_offset_s = 0.0;
+  std::string relations_stamp_map;
   bool calibrate_odometry = false;
 };
 
@@ -93,6 +97,8 @@ bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
       args->cloud = false;
     } else if (a == "--relations") {
       if (!value(&args->relations)) return false;
+    } else if (a == "--relations-stamp-map") {
+      if (!value(&args->relations_stamp_map)) return false;
     } else if (a == "--relations-time-offset") {
       if (!value(&v)) return false;
       char* end = nullptr;
@@ -141,6 +147,22 @@ int Run(const Args& args) {
   }
   if (!args.loop_closure) config.map_builder.global_slam.optimize_every_n_nodes = 0;
   if (!args.cloud) config.cloud.enabled = false;
+  if (args.relations.empty() && !args.relations_stamp_map.empty()) {
+    std::fprintf(stderr, "fusemap_offline: --relations-stamp-map needs --relations\n");
+    return 2;
+  }
+  // Read before the run, so a bad file does not cost one.
+  std::vector<eval::Relation> relations;
+  std::string stamp_map_summary;
+  if (!args.relations.empty() &&
+      (!io::ReadRelationsFile(args.relations, args.relations_time_offset_s, &relations,
+                              &error) ||
+       (!args.relations_stamp_map.empty() &&
+        !io::MapRelationsThroughStampMapFile(args.relations_stamp_map, &relations,
+                                             &stamp_map_summary, &error)))) {
+    std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
+    return 2;
+  }
   io::LcmLogReader reader;
   if (!reader.Open(args.log, &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
@@ -340,11 +362,7 @@ int Run(const Args& args) {
   }
   if (!calibration_note.empty()) std::printf("%s\n", calibration_note.c_str());
   if (!args.relations.empty()) {
-    std::vector<eval::Relation> relations;
-    if (!io::ReadRelationsFile(args.relations, args.relations_time_offset_s, &relations, &error)) {
-      std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
-      return 1;
-    }
+    if (!stamp_map_summary.empty()) std::printf("%s\n", stamp_map_summary.c_str());
     const eval::RelationError r = eval::EvaluateRelations(
         io::ToTrajectory(dense), relations);
     std::printf("relations: used=%d skipped=%d trans_mean_m=%.4f trans_std_m=%.4f "

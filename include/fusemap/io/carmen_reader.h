@@ -42,6 +42,11 @@ struct CarmenRecord {
   enum class Kind { kLaser, kOdometry };
   Kind kind = Kind::kOdometry;
   int line = 0;  // 1-based line in the file
+  // The stamp as the log printed it, before spreading and repair, and the width of its
+  // rounding interval; NaN and 0 when the time is synthesized. Ground truth taken from the
+  // raw log is on this clock (see eval::StampMap).
+  double log_stamp_s = 0.0;
+  double log_stamp_resolution_s = 0.0;
   // kLaser: beams in the laser frame; stamp_s is the output time. The FLASER pose fields
   // (GMapping's estimate) are deliberately not exposed.
   sensor::LaserScan scan;
