@@ -113,9 +113,9 @@ int RunRelations(int argc, char** argv) {
   std::string error, relations_path, trajectory_path;
   double time_offset_s = 0.0;
   double max_time_gap_s = eval::kDefaultRelationMaxTimeGapS;
-  if (!ParseArgs(argc, argv, {"--relations", "--trajectory", "--time-offset", "--max-time-gap", "--stamp-map"},
-                 {},
-                 &args, &error)) {
+  if (!ParseArgs(argc, argv,
+                 {"--relations", "--trajectory", "--time-offset", "--max-time-gap", "--stamp-map"},
+                 {}, &args, &error)) {
     return Fail(error, kRelationsUsage);
   }
   if (args.help) {
