@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -62,10 +61,7 @@ bool FsyncDirectoryOf(const std::string& path, std::string* error) {
 
 void EncodeOdometry(const std::vector<sensor::OdometryData>& odometry, ByteWriter* out) {
   out->U64(odometry.size());
-  for (const auto& o : odometry) {
-    out->F64(o.stamp_s);
-    EncodeRigid2d(o.pose, out);
-  }
+  for (const auto& o : odometry) EncodeTimedPose2d(o.stamp_s, o.pose, out);
 }
 
 bool DecodeOdometry(ByteReader* in, std::vector<sensor::OdometryData>* odometry) {
@@ -73,11 +69,7 @@ bool DecodeOdometry(ByteReader* in, std::vector<sensor::OdometryData>* odometry)
   if (!in->Count(8 + 24, &n)) return false;
   odometry->resize(n);
   for (auto& o : *odometry) {
-    if (!in->F64(&o.stamp_s) || !DecodeRigid2d(in, &o.pose)) return false;
-    if (!std::isfinite(o.stamp_s)) {
-      in->Fail("odometry stamp is not finite");
-      return false;
-    }
+    if (!DecodeTimedPose2d(in, &o.stamp_s, &o.pose)) return false;
   }
   for (size_t i = 1; i < n; ++i) {
     if (!((*odometry)[i].stamp_s >= (*odometry)[i - 1].stamp_s)) {

@@ -21,6 +21,21 @@ bool DecodeRigid2d(ByteReader* in, common::Rigid2d* T) {
   return true;
 }
 
+void EncodeTimedPose2d(double stamp_s, const common::Rigid2d& pose, ByteWriter* out) {
+  out->F64(stamp_s);
+  EncodeRigid2d(pose, out);
+}
+
+bool DecodeTimedPose2d(ByteReader* in, double* stamp_s, common::Rigid2d* pose) {
+  if (!in->F64(stamp_s) || !DecodeRigid2d(in, pose)) return false;
+  if (!std::isfinite(*stamp_s) || !std::isfinite(pose->x()) || !std::isfinite(pose->y()) ||
+      !std::isfinite(pose->angle_rad())) {
+    in->Fail("a stamp or pose is not finite");
+    return false;
+  }
+  return true;
+}
+
 namespace {
 
 enum GridEncoding : uint8_t { kRawCells = 0, kZlibCells = 1 };

@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -14,6 +13,7 @@
 #include <utility>
 
 #include "fusemap/io/byte_buffer.h"
+#include "fusemap/io/submap_state_codec.h"
 #include "fusemap/io/write_all.h"
 
 namespace fusemap {
@@ -26,24 +26,6 @@ constexpr std::uint64_t kRecordBytes[2] = {4 + 4 * 8, 4 * 8};
 
 std::string Errno(const std::string& path, const char* what) {
   return path + ": " + what + ": " + std::strerror(errno);
-}
-
-void PutPose(double stamp_s, const common::Rigid2d& pose, ByteWriter* out) {
-  out->F64(stamp_s);
-  out->F64(pose.x());
-  out->F64(pose.y());
-  out->F64(pose.angle_rad());
-}
-
-bool GetPose(ByteReader* in, double* stamp_s, common::Rigid2d* pose) {
-  double x = 0.0, y = 0.0, angle = 0.0;
-  if (!in->F64(stamp_s) || !in->F64(&x) || !in->F64(&y) || !in->F64(&angle)) return false;
-  if (!std::isfinite(*stamp_s) || !std::isfinite(x) || !std::isfinite(y) || !std::isfinite(angle)) {
-    in->Fail("a value is not finite");
-    return false;
-  }
-  *pose = common::Rigid2d({x, y}, angle);
-  return true;
 }
 
 bool ReadAll(const std::string& path, std::uint64_t length, std::uint64_t record_bytes,
@@ -150,9 +132,9 @@ bool TrajectoryArchive::Append(const std::vector<pose_graph::ArchivedNode2D>& no
   ByteWriter node_out(&node_bytes), odometry_out(&odometry_bytes);
   for (const auto& node : nodes) {
     node_out.I32(node.node);
-    PutPose(node.stamp_s, node.T_map_node, &node_out);
+    EncodeTimedPose2d(node.stamp_s, node.T_map_node, &node_out);
   }
-  for (const auto& sample : *odometry) PutPose(sample.stamp_s, sample.pose, &odometry_out);
+  for (const auto& sample : *odometry) EncodeTimedPose2d(sample.stamp_s, sample.pose, &odometry_out);
   const TrajectoryArchiveMark before = mark_;
   if (!files_->Append(kNodes, node_bytes, &mark_.nodes_bytes, error) ||
       !files_->Append(kOdometry, odometry_bytes, &mark_.odometry_bytes, error)) {
@@ -186,7 +168,7 @@ bool TrajectoryArchive::ReadWholeRun(const std::vector<TimedPose2d>& nodes,
   while (node_in.remaining() > 0) {
     int32_t index = 0;
     TimedPose2d pose;
-    if (!node_in.I32(&index) || !GetPose(&node_in, &pose.stamp_s, &pose.pose)) {
+    if (!node_in.I32(&index) || !DecodeTimedPose2d(&node_in, &pose.stamp_s, &pose.pose)) {
       *error = files_->path[kNodes] + ": " + node_in.error();
       return false;
     }
@@ -209,7 +191,7 @@ bool TrajectoryArchive::ReadWholeRun(const std::vector<TimedPose2d>& nodes,
   ByteReader odometry_in(bytes[kOdometry].data(), bytes[kOdometry].size());
   while (odometry_in.remaining() > 0) {
     sensor::OdometryData sample;
-    if (!GetPose(&odometry_in, &sample.stamp_s, &sample.pose)) {
+    if (!DecodeTimedPose2d(&odometry_in, &sample.stamp_s, &sample.pose)) {
       *error = files_->path[kOdometry] + ": " + odometry_in.error();
       return false;
     }

@@ -12,6 +12,11 @@ namespace io {
 void EncodeRigid2d(const common::Rigid2d& T, ByteWriter* out);
 bool DecodeRigid2d(ByteReader* in, common::Rigid2d* T);
 
+// A stamp in seconds and a pose (EncodeRigid2d), as the checkpoint's odometry record and the
+// trajectory archive store them. Decoding rejects a value that is not finite.
+void EncodeTimedPose2d(double stamp_s, const common::Rigid2d& pose, ByteWriter* out);
+bool DecodeTimedPose2d(ByteReader* in, double* stamp_s, common::Rigid2d* pose);
+
 // A submap with its grid, which is the bulk of a checkpoint: cells as 16-bit little-endian
 // values, raw or zlib-compressed (`compress`). Decoding checks the grid's size against the
 // bytes present before allocating and rejects cell values a ProbabilityGrid cannot hold.
