@@ -138,14 +138,14 @@ int PoseGraph2D::AddNode(
 }
 
 void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
-  if (NodeGoneLocked(node)) return;
-  const NodeData& node_data = NodeLocked(node);
+  const int slot = SlotLocked(node);
+  if (slot < 0 || nodes_[slot].trimmed) return;
+  const NodeData& node_data = nodes_[slot];
   SubmapData& submap_data = submaps_[submap];
   for (int s : node_data.inserted_into) {
     if (s == submap) return;
   }
-  const common::Rigid2d T_submap_node =
-      T_map_submaps_[submap].inverse() * T_map_nodes_[SlotLocked(node)];
+  const common::Rigid2d T_submap_node = T_map_submaps_[submap].inverse() * T_map_nodes_[slot];
   if (T_submap_node.translation().norm() > options_.constraint_builder.max_constraint_distance_m) {
     return;
   }
