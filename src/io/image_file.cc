@@ -1,6 +1,11 @@
 #include "fusemap/io/image_file.h"
 
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <opencv2/imgcodecs.hpp>
+
+#include "fusemap/io/image_header.h"
 
 namespace fusemap {
 namespace io {
@@ -16,6 +21,48 @@ bool WriteImageFile(const cv::Mat& image, const std::string& path, std::string* 
   }
   if (!written) {
     *error = path + ": cannot write";
+    return false;
+  }
+  return true;
+}
+
+bool ReadImageFile(const std::string& path, int flags, int max_side_px, cv::Mat* image,
+                   std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    *error = path + ": is a directory, not an image";
+    return false;
+  }
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    *error = path + ": cannot open";
+    return false;
+  }
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
+                                   std::istreambuf_iterator<char>());
+  if (in.bad()) {
+    *error = path + ": read error";
+    return false;
+  }
+  ImageHeader header;
+  if (!ReadImageHeader(bytes.data(), bytes.size(), &header, error)) {
+    *error = path + ": " + *error;
+    return false;
+  }
+  if (header.width > max_side_px || header.height > max_side_px) {
+    *error = path + ": declares " + std::to_string(header.width) + "x" +
+             std::to_string(header.height) + " pixels, more than the " +
+             std::to_string(max_side_px) + " per side accepted";
+    return false;
+  }
+  try {
+    *image = cv::imdecode(bytes, flags);
+  } catch (const cv::Exception& e) {
+    *error = path + ": cannot decode: " + e.what();
+    return false;
+  }
+  if (image->empty()) {
+    *error = path + ": cannot decode as an image";
     return false;
   }
   return true;

@@ -6,6 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "fusemap/io/image_header.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap_lcm/rgbd_frame_t.hpp"
 
@@ -163,7 +164,67 @@ bool EncodeRgbdFrame(const sensor::RgbdFrame& frame, const RgbdEncodeOptions& op
   return true;
 }
 
-bool DecodeRgbdFrame(const void* data, int size, sensor::RgbdFrame* frame, std::string* error) {
+namespace {
+
+std::string SizeText(int width, int height) {
+  return std::to_string(width) + "x" + std::to_string(height);
+}
+
+// Compares what a compressed image's header declares with the intrinsics, before decoding.
+bool CheckCompressed(const std::vector<uint8_t>& data, const char* name, ImageHeader::Format format,
+                     const sensor::PinholeIntrinsics& k, ImageHeader* header, std::string* error) {
+  if (data.empty()) return Fail(std::string(name) + " image is empty", error);
+  if (!ReadImageHeader(data.data(), data.size(), header, error)) {
+    return Fail(std::string(name) + " image: " + *error, error);
+  }
+  if (header->format != format) return Fail(std::string(name) + " image is not in its declared encoding", error);
+  if (header->width != k.width || header->height != k.height) {
+    return Fail(std::string(name) + " image declares " + SizeText(header->width, header->height) +
+                    " but intrinsics say " + SizeText(k.width, k.height),
+                error);
+  }
+  return true;
+}
+
+bool CheckColor(const RgbdImageData& images, const sensor::PinholeIntrinsics& kc, std::string* error) {
+  if (images.color_encoding == "jpeg") {
+    ImageHeader header;
+    return CheckCompressed(images.color_data, "colour", ImageHeader::Format::kJpeg, kc, &header, error);
+  }
+  if (images.color_encoding == "rgb8") {
+    if (images.color_data.size() != 3 * PixelCount(kc)) return Fail("rgb8 colour size does not match intrinsics", error);
+    return true;
+  }
+  return Fail("unknown colour encoding '" + images.color_encoding + "'", error);
+}
+
+bool CheckDepth(const RgbdImageData& images, const sensor::PinholeIntrinsics& kd, std::string* error) {
+  if (images.depth_encoding == "png16") {
+    ImageHeader header;
+    if (!CheckCompressed(images.depth_data, "depth", ImageHeader::Format::kPng, kd, &header, error)) return false;
+    if (header.bit_depth != 16 || header.channels != 1) return Fail("depth image is not 16-bit single-channel", error);
+    return true;
+  }
+  if (images.depth_encoding == "mono16") {
+    if (images.depth_data.size() != 2 * PixelCount(kd)) return Fail("mono16 depth size does not match intrinsics", error);
+    return true;
+  }
+  return Fail("unknown depth encoding '" + images.depth_encoding + "'", error);
+}
+
+// cv::imdecode reports some corrupt data by throwing (cv::Exception) rather than by an empty Mat.
+cv::Mat ImDecode(const std::vector<uint8_t>& data, int flags) {
+  try {
+    return cv::imdecode(data, flags);
+  } catch (const cv::Exception&) {
+    return cv::Mat();
+  }
+}
+
+}  // namespace
+
+bool DecodeRgbdFrameHeader(const void* data, int size, sensor::RgbdFrame* frame,
+                           RgbdImageData* images, std::string* error) {
   if (data == nullptr || size < 8) return Fail("truncated rgbd_frame_t (no fingerprint)", error);
   const uint8_t* bytes = static_cast<const uint8_t*>(data);
   int64_t hash = 0;
@@ -187,46 +248,66 @@ bool DecodeRgbdFrame(const void* data, int size, sensor::RgbdFrame* frame, std::
       !FromLcm(msg.T_base_color, "T_base_color", &out.T_base_color, error)) {
     return false;
   }
-  const sensor::PinholeIntrinsics& kc = out.color_intrinsics;
-  const sensor::PinholeIntrinsics& kd = out.depth_intrinsics;
-  if (msg.color_encoding == "jpeg") {
-    const cv::Mat bgr = cv::imdecode(msg.color_data, cv::IMREAD_COLOR);
+  RgbdImageData in;
+  in.color_encoding = std::move(msg.color_encoding);
+  in.color_data = std::move(msg.color_data);
+  in.depth_encoding = std::move(msg.depth_encoding);
+  in.depth_data = std::move(msg.depth_data);
+  if (!CheckColor(in, out.color_intrinsics, error) || !CheckDepth(in, out.depth_intrinsics, error)) {
+    return false;
+  }
+  *frame = std::move(out);
+  *images = std::move(in);
+  return true;
+}
+
+bool DecodeRgbdImages(const RgbdImageData& images, sensor::RgbdFrame* frame, std::string* error) {
+  const sensor::PinholeIntrinsics& kc = frame->color_intrinsics;
+  const sensor::PinholeIntrinsics& kd = frame->depth_intrinsics;
+  std::vector<uint8_t> color_rgb;
+  if (images.color_encoding == "jpeg") {
+    const cv::Mat bgr = ImDecode(images.color_data, cv::IMREAD_COLOR);
     if (bgr.empty()) return Fail("colour image (jpeg) cannot be decoded", error);
     if (bgr.cols != kc.width || bgr.rows != kc.height) {
-      return Fail("colour image is " + std::to_string(bgr.cols) + "x" + std::to_string(bgr.rows) +
-                      " but intrinsics say " + std::to_string(kc.width) + "x" + std::to_string(kc.height),
+      return Fail("colour image is " + SizeText(bgr.cols, bgr.rows) + " but intrinsics say " +
+                      SizeText(kc.width, kc.height),
                   error);
     }
     cv::Mat rgb;
     cv::cvtColor(bgr, rgb, cv::COLOR_BGR2RGB);
-    out.color_rgb.assign(rgb.data, rgb.data + 3 * PixelCount(kc));
-  } else if (msg.color_encoding == "rgb8") {
-    if (msg.color_data.size() != 3 * PixelCount(kc)) return Fail("rgb8 colour size does not match intrinsics", error);
-    out.color_rgb = msg.color_data;
+    color_rgb.assign(rgb.data, rgb.data + 3 * PixelCount(kc));
   } else {
-    return Fail("unknown colour encoding '" + msg.color_encoding + "'", error);
+    color_rgb = images.color_data;
   }
-  if (msg.depth_encoding == "png16") {
-    const cv::Mat depth = cv::imdecode(msg.depth_data, cv::IMREAD_ANYDEPTH);
+  std::vector<uint16_t> depth_mm(PixelCount(kd));
+  if (images.depth_encoding == "png16") {
+    const cv::Mat depth = ImDecode(images.depth_data, cv::IMREAD_ANYDEPTH);
     if (depth.empty()) return Fail("depth image (png16) cannot be decoded", error);
     if (depth.type() != CV_16UC1) return Fail("depth image is not 16-bit single-channel", error);
     if (depth.cols != kd.width || depth.rows != kd.height) {
-      return Fail("depth image is " + std::to_string(depth.cols) + "x" + std::to_string(depth.rows) +
-                      " but intrinsics say " + std::to_string(kd.width) + "x" + std::to_string(kd.height),
+      return Fail("depth image is " + SizeText(depth.cols, depth.rows) + " but intrinsics say " +
+                      SizeText(kd.width, kd.height),
                   error);
     }
-    out.depth_mm.resize(PixelCount(kd));
     for (int r = 0; r < depth.rows; ++r) {
-      std::memcpy(&out.depth_mm[static_cast<size_t>(r) * kd.width], depth.ptr<uint16_t>(r), 2 * kd.width);
-    }
-  } else if (msg.depth_encoding == "mono16") {
-    if (msg.depth_data.size() != 2 * PixelCount(kd)) return Fail("mono16 depth size does not match intrinsics", error);
-    out.depth_mm.resize(PixelCount(kd));
-    for (size_t i = 0; i < out.depth_mm.size(); ++i) {
-      out.depth_mm[i] = static_cast<uint16_t>(msg.depth_data[2 * i] | (msg.depth_data[2 * i + 1] << 8));
+      std::memcpy(&depth_mm[static_cast<size_t>(r) * kd.width], depth.ptr<uint16_t>(r), 2 * kd.width);
     }
   } else {
-    return Fail("unknown depth encoding '" + msg.depth_encoding + "'", error);
+    for (size_t i = 0; i < depth_mm.size(); ++i) {
+      depth_mm[i] = static_cast<uint16_t>(images.depth_data[2 * i] | (images.depth_data[2 * i + 1] << 8));
+    }
+  }
+  frame->color_rgb = std::move(color_rgb);
+  frame->depth_mm = std::move(depth_mm);
+  return true;
+}
+
+bool DecodeRgbdFrame(const void* data, int size, sensor::RgbdFrame* frame, std::string* error) {
+  sensor::RgbdFrame out;
+  RgbdImageData images;
+  if (!DecodeRgbdFrameHeader(data, size, &out, &images, error) ||
+      !DecodeRgbdImages(images, &out, error)) {
+    return false;
   }
   *frame = std::move(out);
   return true;

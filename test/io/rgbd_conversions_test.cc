@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+
+#include "fusemap_lcm/rgbd_frame_t.hpp"
 
 namespace fusemap {
 namespace io {
@@ -115,12 +118,109 @@ TEST(RgbdConversionsTest, RejectsBadInput) {
   ASSERT_EQ(bytes[depth_width_offset + 3], 16);
   bytes[depth_width_offset + 3] = 15;
   EXPECT_FALSE(DecodeRgbdFrame(bytes.data(), static_cast<int>(bytes.size()), &decoded, &error));
-  EXPECT_NE(error.find("depth image is 16x8"), std::string::npos) << error;
+  EXPECT_NE(error.find("depth image declares 16x8"), std::string::npos) << error;
 
   // Not an rgbd_frame_t at all.
   const uint8_t junk[16] = {1, 2, 3};
   EXPECT_FALSE(DecodeRgbdFrame(junk, sizeof(junk), &decoded, &error));
   EXPECT_NE(error.find("fingerprint"), std::string::npos) << error;
+}
+
+// Re-encodes a valid frame's message after `edit` changed it (as a hostile sender could).
+template <typename Edit>
+std::vector<uint8_t> Edited(const sensor::RgbdFrame& frame, const RgbdEncodeOptions& options, Edit edit) {
+  std::vector<uint8_t> bytes;
+  std::string error;
+  EXPECT_TRUE(EncodeRgbdFrame(frame, options, &bytes, &error)) << error;
+  fusemap_lcm::rgbd_frame_t msg;
+  EXPECT_EQ(msg.decode(bytes.data(), 0, static_cast<int>(bytes.size())), static_cast<int>(bytes.size()));
+  edit(&msg);
+  msg.color_size = static_cast<int32_t>(msg.color_data.size());
+  msg.depth_size = static_cast<int32_t>(msg.depth_data.size());
+  bytes.resize(msg.getEncodedSize());
+  EXPECT_GT(msg.encode(bytes.data(), 0, static_cast<int>(bytes.size())), 0);
+  return bytes;
+}
+
+bool Decode(const std::vector<uint8_t>& bytes, std::string* error) {
+  sensor::RgbdFrame decoded;
+  return DecodeRgbdFrame(bytes.data(), static_cast<int>(bytes.size()), &decoded, error);
+}
+
+// Issue 18, item 1: cv::imdecode threw "!buf.empty()" and aborted the daemon.
+TEST(RgbdConversionsTest, EmptyCompressedImagesAreRejected) {
+  const sensor::RgbdFrame frame = MakeFrame(16, 8);
+  std::string error;
+  EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(), [](auto* m) { m->color_data.clear(); }), &error));
+  EXPECT_NE(error.find("colour image is empty"), std::string::npos) << error;
+  EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(), [](auto* m) { m->depth_data.clear(); }), &error));
+  EXPECT_NE(error.find("depth image is empty"), std::string::npos) << error;
+  RgbdEncodeOptions raw;
+  raw.color_encoding = "rgb8";
+  raw.depth_encoding = "mono16";
+  EXPECT_FALSE(Decode(Edited(frame, raw, [](auto* m) { m->color_data.clear(); }), &error));
+  EXPECT_FALSE(Decode(Edited(frame, raw, [](auto* m) { m->depth_data.clear(); }), &error));
+}
+
+// Finds the JPEG's SOF0 segment and overwrites the size it declares.
+void SetJpegSize(std::vector<uint8_t>* jpeg, int width, int height) {
+  for (size_t i = 2; i + 9 < jpeg->size(); ++i) {
+    if ((*jpeg)[i] == 0xFF && (*jpeg)[i + 1] == 0xC0) {
+      (*jpeg)[i + 5] = static_cast<uint8_t>(height >> 8);
+      (*jpeg)[i + 6] = static_cast<uint8_t>(height & 0xff);
+      (*jpeg)[i + 7] = static_cast<uint8_t>(width >> 8);
+      (*jpeg)[i + 8] = static_cast<uint8_t>(width & 0xff);
+      return;
+    }
+  }
+  ADD_FAILURE() << "no SOF0 in the JPEG";
+}
+
+// Issue 18, item 2: a JPEG declaring 65500 x 65500 aborted the daemon inside OpenCV, one declaring
+// 30000 x 30000 took 13 s and 2.5 GB. The declared size is now compared before decoding.
+TEST(RgbdConversionsTest, HugeDeclaredImageSizesAreRejectedBeforeDecoding) {
+  const sensor::RgbdFrame frame = MakeFrame(16, 8);
+  std::string error;
+  for (int side : {65500, 30000}) {
+    const auto start = std::chrono::steady_clock::now();
+    EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(),
+                               [side](auto* m) { SetJpegSize(&m->color_data, side, side); }),
+                        &error));
+    EXPECT_NE(error.find("colour image declares " + std::to_string(side)), std::string::npos) << error;
+    EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(1));
+  }
+  // The depth PNG's IHDR: width at byte 16, height at 20 (big-endian).
+  EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(),
+                             [](auto* m) {
+                               m->depth_data[18] = 0xff;
+                               m->depth_data[22] = 0xff;
+                             }),
+                      &error));
+  EXPECT_NE(error.find("depth image declares"), std::string::npos) << error;
+  // A colour PNG sent as "jpeg", a JPEG sent as the depth image.
+  EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(), [](auto* m) { m->color_data = m->depth_data; }), &error));
+  EXPECT_FALSE(Decode(Edited(frame, RgbdEncodeOptions(), [](auto* m) { m->depth_data = m->color_data; }), &error));
+}
+
+// The two halves the daemon runs on different threads give the same frame as DecodeRgbdFrame.
+TEST(RgbdConversionsTest, HeaderThenImagesEqualsWholeDecode) {
+  const sensor::RgbdFrame frame = MakeFrame(32, 24);
+  std::vector<uint8_t> bytes;
+  std::string error;
+  ASSERT_TRUE(EncodeRgbdFrame(frame, RgbdEncodeOptions(), &bytes, &error)) << error;
+  sensor::RgbdFrame whole, split;
+  RgbdImageData images;
+  ASSERT_TRUE(DecodeRgbdFrame(bytes.data(), static_cast<int>(bytes.size()), &whole, &error)) << error;
+  ASSERT_TRUE(DecodeRgbdFrameHeader(bytes.data(), static_cast<int>(bytes.size()), &split, &images, &error));
+  EXPECT_TRUE(split.color_rgb.empty());
+  EXPECT_TRUE(split.depth_mm.empty());
+  ASSERT_TRUE(DecodeRgbdImages(images, &split, &error)) << error;
+  EXPECT_EQ(split.color_rgb, whole.color_rgb);
+  EXPECT_EQ(split.depth_mm, whole.depth_mm);
+  // A body that is corrupt past a valid header fails only in the second half.
+  images.color_data.resize(images.color_data.size() / 2);
+  images.depth_data.resize(40);
+  EXPECT_FALSE(DecodeRgbdImages(images, &split, &error));
 }
 
 }  // namespace

@@ -14,6 +14,13 @@ namespace io {
 bool WriteImageFile(const cv::Mat& image, const std::string& path, std::string* error,
                     const std::vector<int>& params = {});
 
+// Reads a PNG or JPEG file with cv::imdecode `flags` (cv::IMREAD_GRAYSCALE, ...), after checking
+// the size its header declares against `max_side_px`: OpenCV would otherwise allocate whatever
+// a corrupt header says. False with a reason naming the path for a missing file, a directory,
+// another format, an absurd declared size or undecodable data.
+bool ReadImageFile(const std::string& path, int flags, int max_side_px, cv::Mat* image,
+                   std::string* error);
+
 }  // namespace io
 }  // namespace fusemap
 

@@ -28,8 +28,29 @@ struct RgbdEncodeOptions {
 bool EncodeRgbdFrame(const sensor::RgbdFrame& frame, const RgbdEncodeOptions& options,
                      std::vector<uint8_t>* bytes, std::string* error);
 
-// Decodes rgbd_frame_t bytes. Rejects with a reason: a wrong fingerprint, truncated or trailing
-// bytes, bad counts, unknown encodings, zero or absurd image sizes, non-finite intrinsics or
+// An rgbd_frame_t's images as they came on the wire: still compressed (jpeg/png16) or raw.
+struct RgbdImageData {
+  std::string color_encoding;
+  std::vector<uint8_t> color_data;
+  std::string depth_encoding;
+  std::vector<uint8_t> depth_data;
+};
+
+// The cheap half of decoding, which touches no pixel (the daemon does it on the LCM handler
+// thread): checks the message layout, intrinsics and transforms, and that each image's encoding
+// is known and its size (read from the PNG/JPEG header, or the raw byte count) is the one the
+// intrinsics declare, so no later decode can allocate more than a known camera image. Fills
+// *frame without its images and *images with the image bytes.
+bool DecodeRgbdFrameHeader(const void* data, int size, sensor::RgbdFrame* frame,
+                           RgbdImageData* images, std::string* error);
+
+// The costly half: decodes `images` into frame->color_rgb and frame->depth_mm, for a frame and
+// images DecodeRgbdFrameHeader accepted. Fails on image data that cannot be decoded or decodes
+// to another size or type than its header declared.
+bool DecodeRgbdImages(const RgbdImageData& images, sensor::RgbdFrame* frame, std::string* error);
+
+// Both halves. Rejects with a reason: a wrong fingerprint, truncated or trailing bytes, bad
+// counts, unknown encodings, empty, zero-size or absurd images, non-finite intrinsics or
 // transforms, undecodable images and images whose size differs from the intrinsics.
 bool DecodeRgbdFrame(const void* data, int size, sensor::RgbdFrame* frame, std::string* error);
 
