@@ -1,10 +1,13 @@
 #include "fusemap/mapping/local_trajectory_builder_2d.h"
 
 #include <cassert>
+#include <cmath>
 #include <utility>
 
 namespace fusemap {
 namespace mapping {
+
+constexpr double LocalTrajectoryBuilder2D::kMaxPredictedJumpM;
 
 LocalTrajectoryBuilderOptions2D::LocalTrajectoryBuilderOptions2D() {
   loop_closure_adaptive_voxel_filter.max_length_m = 0.9f;
@@ -140,6 +143,13 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
   return refined;
 }
 
+bool LocalTrajectoryBuilder2D::IsPlausiblePrediction(const common::Rigid2d& predicted) const {
+  const common::Rigid2d last = extrapolator_.ExtrapolatePose(extrapolator_.last_pose_stamp_s());
+  // Written so that NaN fails too.
+  return (predicted.translation() - last.translation()).norm() <= kMaxPredictedJumpM &&
+         std::isfinite(predicted.angle_rad());
+}
+
 std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D::AddScan(
     const sensor::LaserScan& scan) {
   ++stats_.scans;
@@ -158,9 +168,18 @@ std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D
   const sensor::PointCloud2d matching_cloud =
       sensor::AdaptiveVoxelFilter(in_tracking.returns, options_.adaptive_voxel_filter);
 
-  const common::Rigid2d predicted = extrapolator_.HasPose()
-                                        ? extrapolator_.ExtrapolatePose(scan.stamp_s)
-                                        : common::Rigid2d::Identity();
+  common::Rigid2d predicted = common::Rigid2d::Identity();
+  if (extrapolator_.HasPose()) {
+    predicted = extrapolator_.ExtrapolatePose(scan.stamp_s);
+    if (!IsPlausiblePrediction(predicted)) {
+      ++stats_.absurd_predictions;
+      predicted = extrapolator_.ExtrapolatePoseWithoutOdometry(scan.stamp_s);
+      // The matched poses' velocity could only be absurd if a match was; then stand still.
+      if (!IsPlausiblePrediction(predicted)) {
+        predicted = extrapolator_.ExtrapolatePose(extrapolator_.last_pose_stamp_s());
+      }
+    }
+  }
   MatchingResult result;
   result.stamp_s = scan.stamp_s;
   result.T_local_tracking =
@@ -171,6 +190,10 @@ std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D
   InsertionResult insertion;
   insertion.insertion_submaps = active_submaps_.InsertRangeData(
       sensor::TransformRangeData(in_tracking, result.T_local_tracking));
+  if (insertion.insertion_submaps.empty()) {
+    ++stats_.insertions_refused;
+    return result;
+  }
   insertion.filtered_cloud =
       sensor::AdaptiveVoxelFilter(in_tracking.returns, options_.loop_closure_adaptive_voxel_filter);
   result.insertion = std::move(insertion);

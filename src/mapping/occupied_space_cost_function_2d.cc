@@ -27,6 +27,18 @@ class GridArrayAdapter {
   const ProbabilityGrid& grid_;
 };
 
+// Samples this many cells beyond the grid are all unknown, so the bicubic interpolant (4 x 4
+// samples) is flat there; clamping to this band changes no cost and keeps a far or non-finite
+// pose from overflowing the interpolator's integer sample index.
+constexpr double kOutsideCells = 4.0;
+
+template <typename T>
+T ClampToBand(const T& value, int num_cells) {
+  if (!(value >= T(-kOutsideCells))) return T(-kOutsideCells);  // NaN too
+  if (value > T(num_cells + kOutsideCells)) return T(num_cells + kOutsideCells);
+  return value;
+}
+
 class OccupiedSpaceCostFunctor2D {
  public:
   OccupiedSpaceCostFunctor2D(double scaling_factor, const sensor::PointCloud2d& cloud,
@@ -50,8 +62,8 @@ class OccupiedSpaceCostFunctor2D {
       const T x_m = cos_a * px - sin_a * py + pose[0];
       const T y_m = sin_a * px + cos_a * py + pose[1];
       // Sample (row j, column i) sits at the centre of cell (i, j), hence the half-cell shift.
-      const T column = (x_m - limits.origin_m.x()) * inv_resolution - 0.5;
-      const T row = (y_m - limits.origin_m.y()) * inv_resolution - 0.5;
+      const T column = ClampToBand((x_m - limits.origin_m.x()) * inv_resolution - 0.5, limits.num_x_cells);
+      const T row = ClampToBand((y_m - limits.origin_m.y()) * inv_resolution - 0.5, limits.num_y_cells);
       interpolator_.Evaluate(row, column, &residual[i]);
       residual[i] = scaling_factor_ * residual[i];
     }

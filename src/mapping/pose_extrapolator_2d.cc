@@ -125,6 +125,12 @@ common::Rigid2d PoseExtrapolator2D::ExtrapolatePose(double stamp_s) const {
   if (InterpolateOdometry(last.stamp_s, &odom_then) && InterpolateOdometry(stamp_s, &odom_now)) {
     return last.pose * (odom_then.inverse() * odom_now);
   }
+  return ExtrapolatePoseWithoutOdometry(stamp_s);
+}
+
+common::Rigid2d PoseExtrapolator2D::ExtrapolatePoseWithoutOdometry(double stamp_s) const {
+  const TimedPose& last = poses_.back();
+  if (stamp_s <= last.stamp_s) return last.pose;
   const double dt = stamp_s - last.stamp_s;
   double yaw_rate = angular_velocity_radps_;
   if (!imu_.empty() && imu_.back().stamp_s > last.stamp_s - kOdometryHistoryMarginS) {

@@ -1,6 +1,8 @@
 #include "fusemap/mapping/probability_grid.h"
 
+#include <algorithm>
 #include <cassert>
+#include <cmath>
 #include <utility>
 
 namespace fusemap {
@@ -8,6 +10,8 @@ namespace mapping {
 namespace {
 constexpr int kGrowMarginCells = 4;
 }  // namespace
+
+constexpr int64_t ProbabilityGrid::kMaxCells;
 
 ProbabilityGrid::ProbabilityGrid(const MapLimits& limits)
     : limits_(limits),
@@ -57,36 +61,54 @@ void ProbabilityGrid::FinishUpdate() {
   update_indices_.clear();
 }
 
-void ProbabilityGrid::GrowLimits(const Eigen::Vector2f& point_m) {
-  assert(update_indices_.empty() && "grow between updates only");
+std::optional<MapLimits> ProbabilityGrid::LimitsCovering(const MapLimits& limits,
+                                                         const Eigen::Vector2f& min_m,
+                                                         const Eigen::Vector2f& max_m) {
+  if (!min_m.allFinite() || !max_m.allFinite()) return std::nullopt;
+  // In double cell units, so that no far point is ever cast to int.
   const auto inside = [&](const MapLimits& l) {
-    const Eigen::Array2i c = l.GetCellIndex(point_m);
-    return c.x() >= kGrowMarginCells && c.y() >= kGrowMarginCells &&
-           c.x() < l.num_x_cells - kGrowMarginCells && c.y() < l.num_y_cells - kGrowMarginCells;
+    const Eigen::Array2d lo = ((min_m.cast<double>() - l.origin_m) / l.resolution_m).array().floor();
+    const Eigen::Array2d hi = ((max_m.cast<double>() - l.origin_m) / l.resolution_m).array().floor();
+    return lo.x() >= kGrowMarginCells && lo.y() >= kGrowMarginCells &&
+           hi.x() < l.num_x_cells - kGrowMarginCells && hi.y() < l.num_y_cells - kGrowMarginCells;
   };
-  if (inside(limits_)) return;
-  MapLimits grown = limits_;
+  MapLimits grown = limits;
   while (!inside(grown)) {
     // Double about the centre so growth is symmetric and amortised O(1) per cell.
     const int add_x = std::max(grown.num_x_cells, 2 * kGrowMarginCells);
     const int add_y = std::max(grown.num_y_cells, 2 * kGrowMarginCells);
+    const int64_t cells = (int64_t{grown.num_x_cells} + add_x) * (int64_t{grown.num_y_cells} + add_y);
+    if (cells > kMaxCells) return std::nullopt;
     grown.origin_m -= grown.resolution_m * Eigen::Vector2d(add_x / 2, add_y / 2);
     grown.num_x_cells += add_x;
     grown.num_y_cells += add_y;
   }
+  return grown;
+}
+
+bool ProbabilityGrid::GrowLimits(const Eigen::Vector2f& point_m) { return GrowLimits(point_m, point_m); }
+
+bool ProbabilityGrid::GrowLimits(const Eigen::Vector2f& min_m, const Eigen::Vector2f& max_m) {
+  assert(update_indices_.empty() && "grow between updates only");
+  const std::optional<MapLimits> grown = LimitsCovering(limits_, min_m, max_m);
+  if (!grown) return false;
+  if (grown->num_x_cells == limits_.num_x_cells && grown->num_y_cells == limits_.num_y_cells) {
+    return true;
+  }
   const Eigen::Array2i offset(
-      static_cast<int>(std::lround((limits_.origin_m.x() - grown.origin_m.x()) / grown.resolution_m)),
-      static_cast<int>(std::lround((limits_.origin_m.y() - grown.origin_m.y()) / grown.resolution_m)));
-  std::vector<uint16_t> cells(static_cast<size_t>(grown.num_x_cells) * grown.num_y_cells,
+      static_cast<int>(std::lround((limits_.origin_m.x() - grown->origin_m.x()) / grown->resolution_m)),
+      static_cast<int>(std::lround((limits_.origin_m.y() - grown->origin_m.y()) / grown->resolution_m)));
+  std::vector<uint16_t> cells(static_cast<size_t>(grown->num_x_cells) * grown->num_y_cells,
                               kUnknownValue);
   for (int y = 0; y < limits_.num_y_cells; ++y) {
     for (int x = 0; x < limits_.num_x_cells; ++x) {
-      cells[grown.FlatIndex(Eigen::Array2i(x, y) + offset)] =
+      cells[grown->FlatIndex(Eigen::Array2i(x, y) + offset)] =
           cells_[limits_.FlatIndex(Eigen::Array2i(x, y))];
     }
   }
-  limits_ = grown;
+  limits_ = *grown;
   cells_.swap(cells);
+  return true;
 }
 
 bool ProbabilityGrid::ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const {

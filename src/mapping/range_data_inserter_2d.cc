@@ -90,11 +90,29 @@ RangeDataInserter2D::RangeDataInserter2D(const ProbabilityGridRangeDataInserterO
   assert(options.IsValid(&error));
 }
 
-void RangeDataInserter2D::Insert(const sensor::RangeData& range_data,
+bool RangeDataBounds(const sensor::RangeData& range_data, Eigen::Vector2f* min_m, Eigen::Vector2f* max_m) {
+  Eigen::Vector2f lo = range_data.origin;
+  Eigen::Vector2f hi = range_data.origin;
+  for (const auto* points : {&range_data.returns, &range_data.misses}) {
+    for (const Eigen::Vector2f& point : *points) {
+      lo = lo.cwiseMin(point);
+      hi = hi.cwiseMax(point);
+    }
+  }
+  // cwiseMin/Max may drop a NaN, so check the points themselves.
+  bool finite = range_data.origin.allFinite();
+  for (const auto* points : {&range_data.returns, &range_data.misses}) {
+    for (const Eigen::Vector2f& point : *points) finite = finite && point.allFinite();
+  }
+  *min_m = lo;
+  *max_m = hi;
+  return finite;
+}
+
+bool RangeDataInserter2D::Insert(const sensor::RangeData& range_data,
                                  ProbabilityGrid* grid) const {
-  grid->GrowLimits(range_data.origin);
-  for (const Eigen::Vector2f& point : range_data.returns) grid->GrowLimits(point);
-  for (const Eigen::Vector2f& point : range_data.misses) grid->GrowLimits(point);
+  Eigen::Vector2f min_m, max_m;
+  if (!RangeDataBounds(range_data, &min_m, &max_m) || !grid->GrowLimits(min_m, max_m)) return false;
 
   const MapLimits& limits = grid->limits();
   for (const Eigen::Vector2f& point : range_data.returns) {
@@ -109,6 +127,7 @@ void RangeDataInserter2D::Insert(const sensor::RangeData& range_data,
     }
   }
   grid->FinishUpdate();
+  return true;
 }
 
 }  // namespace mapping

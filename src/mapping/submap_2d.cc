@@ -21,13 +21,18 @@ MapLimits InitialLimits(const Eigen::Vector2f& centre_m, double resolution_m) {
 
 }  // namespace
 
+constexpr double SubmapsOptions::kMinResolutionM;
+constexpr double SubmapsOptions::kMaxResolutionM;
+constexpr int SubmapsOptions::kMaxNumRangeData;
+
 bool SubmapsOptions::IsValid(std::string* error) const {
-  if (num_range_data < 1) {
-    *error = "num_range_data must be >= 1";
+  if (num_range_data < 1 || num_range_data > kMaxNumRangeData) {
+    *error = "num_range_data must lie in [1, " + std::to_string(kMaxNumRangeData) + "]";
     return false;
   }
-  if (!(resolution_m > 0.0)) {
-    *error = "resolution_m must be > 0";
+  if (!(resolution_m >= kMinResolutionM && resolution_m <= kMaxResolutionM)) {
+    *error = "resolution_m must lie in [" + std::to_string(kMinResolutionM).substr(0, 5) + ", " +
+             std::to_string(kMaxResolutionM).substr(0, 3) + "]";
     return false;
   }
   return range_data_inserter.IsValid(error);
@@ -37,10 +42,15 @@ SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader) {
   SubmapsOptions options;
   reader.Get("num_range_data", &options.num_range_data);
   reader.Get("resolution_m", &options.resolution_m);
-  if (options.num_range_data < 1) reader.AddError("num_range_data", "must be >= 1");
-  if (!(options.resolution_m > 0.0)) reader.AddError("resolution_m", "must be > 0");
   options.range_data_inserter =
       ParseProbabilityGridRangeDataInserterOptions(reader.Child("range_data_inserter"));
+  // IsValid() checks the inserter too, which reported its own keys already.
+  SubmapsOptions own = options;
+  own.range_data_inserter = ProbabilityGridRangeDataInserterOptions();
+  std::string error;
+  if (!own.IsValid(&error)) {
+    reader.AddError(error.rfind("num_range_data", 0) == 0 ? "num_range_data" : "resolution_m", error);
+  }
   return options;
 }
 
@@ -67,8 +77,24 @@ SubmapState2D Submap2D::ExportState() const {
 void Submap2D::InsertRangeData(const sensor::RangeData& range_data_in_local,
                                const RangeDataInserter2D& inserter) {
   assert(!finished_);
-  inserter.Insert(range_data_in_local, &grid_);
+  const bool inserted = inserter.Insert(range_data_in_local, &grid_);
+  assert(inserted);
+  (void)inserted;
   ++num_range_data_;
+}
+
+namespace {
+
+bool LimitsCanHold(const MapLimits& limits, const sensor::RangeData& range_data) {
+  Eigen::Vector2f min_m, max_m;
+  return RangeDataBounds(range_data, &min_m, &max_m) &&
+         ProbabilityGrid::LimitsCovering(limits, min_m, max_m).has_value();
+}
+
+}  // namespace
+
+bool Submap2D::CanInsert(const sensor::RangeData& range_data_in_local) const {
+  return LimitsCanHold(grid_.limits(), range_data_in_local);
 }
 
 void Submap2D::Finish() {
@@ -85,7 +111,15 @@ ActiveSubmaps2D::ActiveSubmaps2D(const SubmapsOptions& options)
 
 std::vector<std::shared_ptr<const Submap2D>> ActiveSubmaps2D::InsertRangeData(
     const sensor::RangeData& range_data_in_local) {
-  if (submaps_.empty() || submaps_.back()->num_range_data() == options_.num_range_data) {
+  const bool start_new = submaps_.empty() || submaps_.back()->num_range_data() == options_.num_range_data;
+  // With a new submap the finished front one leaves and does not take the data.
+  for (size_t i = start_new && submaps_.size() >= 2 ? 1 : 0; i < submaps_.size(); ++i) {
+    if (!submaps_[i]->CanInsert(range_data_in_local)) return {};
+  }
+  if (start_new) {
+    if (!LimitsCanHold(InitialLimits(range_data_in_local.origin, options_.resolution_m), range_data_in_local)) {
+      return {};
+    }
     AddSubmap(range_data_in_local.origin);
   }
   for (const auto& submap : submaps_) submap->InsertRangeData(range_data_in_local, inserter_);

@@ -220,6 +220,35 @@ TEST(LocalTrajectoryBuilder2DTest, InitialMatchBelowMinScoreKeepsPredictionAndCo
   }
 }
 
+// Issue 18, item 3: one odometry message at x = 1e300 early in a run hung local SLAM in the
+// grid's growth loop. The absurd prediction is now replaced by the last pose, and tracking
+// carries on from the following odometry.
+TEST(LocalTrajectoryBuilder2DTest, AbsurdOdometryPoseIsIgnored) {
+  const std::vector<Segment> walls = Room();
+  LocalTrajectoryBuilder2D builder(TestOptions());
+  constexpr int kNumScans = 30;
+  constexpr int kAbsurdScan = 4;
+  for (int i = 0; i < kNumScans; ++i) {
+    const double stamp_s = 0.1 * i;
+    // Just before scan kAbsurdScan the only new odometry is the corrupt one.
+    if (i == kAbsurdScan) {
+      builder.AddOdometry({stamp_s - 0.05, common::Rigid2d(1e300, -1e300, 0.0)});
+    } else {
+      builder.AddOdometry({stamp_s, TruePose(i)});
+    }
+    const auto result = builder.AddScan(SimulateScan(walls, TruePose(i), stamp_s));
+    ASSERT_TRUE(result.has_value()) << "scan " << i;
+    // The local frame starts at the first scan's pose.
+    const common::Rigid2d expected = TruePose(0).inverse() * TruePose(i);
+    const double error_m = (result->T_local_tracking.translation() - expected.translation()).norm();
+    // Matched from the last pose (one 0.1 m step behind), then tracking as before.
+    EXPECT_LT(error_m, i < kAbsurdScan + 2 ? 0.2 : 0.05) << "scan " << i;
+  }
+  EXPECT_GE(builder.stats().absurd_predictions, 1);
+  EXPECT_EQ(builder.stats().insertions_refused, 0);
+  EXPECT_EQ(builder.stats().inserted, kNumScans);
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

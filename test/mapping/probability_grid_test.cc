@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
+
 namespace fusemap {
 namespace mapping {
 namespace {
@@ -89,6 +92,35 @@ TEST(ProbabilityGridTest, CroppedKeepsKnownCellsAtTheirWorldPositions) {
     EXPECT_NEAR(cropped.GetProbability(cropped.limits().GetCellIndex(world)),
                 grid.GetProbability(cell), 1e-6);
   }
+}
+
+// Issue 18, item 3: a point at 1e300 overflowed the doubling loop's int arithmetic and hung.
+TEST(ProbabilityGridTest, RefusesToGrowForAbsurdOrNonFinitePoints) {
+  ProbabilityGrid grid(SmallLimits());
+  const MapLimits before = grid.limits();
+  const float inf = std::numeric_limits<float>::infinity();
+  for (const Eigen::Vector2f& p :
+       {Eigen::Vector2f(1e30f, 0.f), Eigen::Vector2f(0.f, -3e38f), Eigen::Vector2f(inf, 0.f),
+        Eigen::Vector2f(0.f, std::nanf("")), Eigen::Vector2f(1e5f, 1e5f)}) {
+    EXPECT_FALSE(grid.GrowLimits(p)) << p.transpose();
+    EXPECT_EQ(grid.limits().num_x_cells, before.num_x_cells);
+    EXPECT_EQ(grid.limits().origin_m, before.origin_m);
+  }
+  // All or nothing for a box with one good and one absurd corner.
+  EXPECT_FALSE(grid.GrowLimits(Eigen::Vector2f(5.f, 5.f), Eigen::Vector2f(1e30f, 5.f)));
+  EXPECT_EQ(grid.limits().num_x_cells, before.num_x_cells);
+  // The bound in cells, asked without allocating: with 10 m cells, 100 km needs 20 x 2^10 =
+  // 20,480 cells per side (4.2e8 cells), past it; 50 km needs 10,240 (1.05e8), within it.
+  MapLimits coarse = SmallLimits();
+  coarse.resolution_m = 10.0;
+  coarse.origin_m = Eigen::Vector2d(-100.0, -100.0);
+  EXPECT_FALSE(ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(1e5f, 0.f), Eigen::Vector2f(1e5f, 0.f)));
+  const auto limits = ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(0.f, -5e4f), Eigen::Vector2f(5e4f, 0.f));
+  ASSERT_TRUE(limits.has_value());
+  EXPECT_EQ(limits->num_x_cells, 10240);
+  // Ordinary growth still works.
+  EXPECT_TRUE(grid.GrowLimits(Eigen::Vector2f(30.f, -30.f)));
+  EXPECT_EQ(grid.limits().num_x_cells, 640);
 }
 
 }  // namespace

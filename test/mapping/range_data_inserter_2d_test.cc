@@ -168,6 +168,33 @@ TEST(ProbabilityGridRangeDataInserterOptionsTest, ParseAndValidate) {
   EXPECT_FALSE(bad->Finish(&error));
 }
 
+// Issue 18, item 3: range data far away (a pose at 1e300, a non-finite point) is refused as a
+// whole and leaves the grid as it was, instead of growing it without end.
+TEST(RangeDataInserter2DTest, RefusesAbsurdRangeDataAndLeavesTheGridUnchanged) {
+  ProbabilityGridRangeDataInserterOptions options;
+  RangeDataInserter2D inserter(options);
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-2.5, -2.5);
+  limits.num_x_cells = 100;
+  limits.num_y_cells = 100;
+  ProbabilityGrid grid(limits);
+  sensor::RangeData far;
+  far.origin = Eigen::Vector2f(0.f, 0.f);
+  far.returns.push_back(Eigen::Vector2f(1.f, 0.f));
+  far.returns.push_back(Eigen::Vector2f(3e37f, 1.f));
+  EXPECT_FALSE(inserter.Insert(far, &grid));
+  sensor::RangeData nan = far;
+  nan.returns[1] = Eigen::Vector2f(std::nanf(""), 0.f);
+  EXPECT_FALSE(inserter.Insert(nan, &grid));
+  EXPECT_EQ(grid.limits().num_x_cells, 100);
+  Eigen::Array2i lo, hi;
+  EXPECT_FALSE(grid.ComputeKnownBounds(&lo, &hi));
+  far.returns.pop_back();
+  EXPECT_TRUE(inserter.Insert(far, &grid));
+  EXPECT_TRUE(grid.ComputeKnownBounds(&lo, &hi));
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

@@ -85,7 +85,15 @@ class LocalTrajectoryBuilder2D {
     // Scans whose initial branch-and-bound match stayed below min_score (the prediction was
     // kept). Not in checkpoints: map_builder_state_codec predates it.
     int initial_match_rejected = 0;
+    // Scans whose extrapolated pose jumped absurdly (kMaxPredictedJumpM) from the last pose,
+    // matched from a prediction without odometry instead; scans whose data no submap could hold (a pose too
+    // far away: ProbabilityGrid::kMaxCells), not inserted. Not in checkpoints either.
+    int absurd_predictions = 0;
+    int insertions_refused = 0;
   };
+  // Far beyond any robot's motion between two scans: a prediction further than this from the
+  // last pose comes from corrupt odometry or IMU data.
+  static constexpr double kMaxPredictedJumpM = 100.0;
 
   explicit LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderOptions2D& options);
 
@@ -110,6 +118,8 @@ class LocalTrajectoryBuilder2D {
                     std::vector<std::shared_ptr<Submap2D>> active_submaps);
 
  private:
+  // Within kMaxPredictedJumpM of the last matched pose, and finite. Requires a pose.
+  bool IsPlausiblePrediction(const common::Rigid2d& predicted) const;
   common::Rigid2d ScanMatch(const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
                             double* score);
 

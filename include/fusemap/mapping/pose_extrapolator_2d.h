@@ -46,6 +46,9 @@ class PoseExtrapolator2D {
   double last_pose_stamp_s() const { return poses_.back().stamp_s; }
   // Requires HasPose(). Times before the last pose return that pose.
   common::Rigid2d ExtrapolatePose(double stamp_s) const;
+  // The same without odometry: the matched poses' velocity (yaw rate from the IMU if recent).
+  // For when odometry predicts something absurd.
+  common::Rigid2d ExtrapolatePoseWithoutOdometry(double stamp_s) const;
 
   // Odometry pose interpolated at `stamp_s`; past the last sample, extrapolated for up to
   // 0.5 s and then held. False without odometry or before the oldest kept sample.

@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "fusemap/mapping/map_limits.h"
@@ -12,10 +13,15 @@ namespace fusemap {
 namespace mapping {
 
 // Occupancy grid storing per-cell hit probability as 15-bit values (see probability_values.h).
-// It grows (keeping cell contents at their world positions) when asked to cover a point outside.
-// Invariant: between updates no cell carries kUpdateMarker.
+// It grows (keeping cell contents at their world positions) when asked to cover a point outside,
+// up to kMaxCells. Invariant: between updates no cell carries kUpdateMarker.
 class ProbabilityGrid {
  public:
+  // Most cells a grid grows to (512 MB; at 5 cm, 640 m x 640 m when grown from a submap's
+  // start). Data that need more come from an absurd pose (a corrupt odometry message, a
+  // diverged match), not from a building, and growing for them would overflow or never end.
+  static constexpr int64_t kMaxCells = int64_t{1} << 28;
+
   explicit ProbabilityGrid(const MapLimits& limits);
   // A grid with the given cell values (checkpoint restore): one per cell, row-major as
   // MapLimits::FlatIndex, none carrying kUpdateMarker.
@@ -39,7 +45,14 @@ class ProbabilityGrid {
   void FinishUpdate();
 
   // Enlarges the grid (by doubling) until `point_m` falls inside, with a margin of a few cells.
-  void GrowLimits(const Eigen::Vector2f& point_m);
+  // Returns false, leaving the grid unchanged, if the point is not finite or covering it would
+  // take more than kMaxCells.
+  bool GrowLimits(const Eigen::Vector2f& point_m);
+  // The same for the box [min_m, max_m], all or nothing.
+  bool GrowLimits(const Eigen::Vector2f& min_m, const Eigen::Vector2f& max_m);
+  // The limits GrowLimits(min_m, max_m) would give `limits`; empty where it would refuse.
+  static std::optional<MapLimits> LimitsCovering(const MapLimits& limits, const Eigen::Vector2f& min_m,
+                                                 const Eigen::Vector2f& max_m);
 
   // Bounding box (in cells) of the known cells; false if nothing is known.
   bool ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const;

@@ -23,6 +23,9 @@ struct ProbabilityGridRangeDataInserterOptions {
 ProbabilityGridRangeDataInserterOptions ParseProbabilityGridRangeDataInserterOptions(
     common::ConfigReader& reader);
 
+// The bounding box of the origin, returns and misses; false if any coordinate is not finite.
+bool RangeDataBounds(const sensor::RangeData& range_data, Eigen::Vector2f* min_m, Eigen::Vector2f* max_m);
+
 // Writes one scan into a probability grid with the odds update of Hess et al. 2016, eq. 2.
 // Every touched cell is updated at most once per Insert(): hits first, then the free cells
 // along each ray, so a cell hit by this scan is never also cleared by it.
@@ -31,10 +34,10 @@ class RangeDataInserter2D {
   explicit RangeDataInserter2D(const ProbabilityGridRangeDataInserterOptions& options);
 
   // `range_data` must be in the grid's frame. Grows the grid to cover the origin and every
-  // point, then applies the hit table to return cells and (if insert_free_space) the miss
+  // point (false, grid unchanged, if it cannot: see ProbabilityGrid::GrowLimits), then applies the hit table to return cells and (if insert_free_space) the miss
   // table to cells crossed by rays to returns (excluding the return cell) and to misses
   // (including the end cell).
-  void Insert(const sensor::RangeData& range_data, ProbabilityGrid* grid) const;
+  bool Insert(const sensor::RangeData& range_data, ProbabilityGrid* grid) const;
 
  private:
   ProbabilityGridRangeDataInserterOptions options_;

@@ -19,6 +19,11 @@ struct SubmapsOptions {
   // Range data per submap before the next one starts; each submap ends up with twice this.
   int num_range_data = 90;
   double resolution_m = 0.05;
+  // A grid finer than 5 mm could not hold a laser's range within ProbabilityGrid::kMaxCells;
+  // coarser than 1 m maps nothing. More range data per submap than this never finishes one.
+  static constexpr double kMinResolutionM = 0.005;
+  static constexpr double kMaxResolutionM = 1.0;
+  static constexpr int kMaxNumRangeData = 100000;
   ProbabilityGridRangeDataInserterOptions range_data_inserter;
 
   bool IsValid(std::string* error) const;
@@ -55,10 +60,13 @@ class Submap2D {
   int num_range_data() const { return num_range_data_; }
   bool finished() const { return finished_; }
 
-  // Must not be called once finished.
+  // Must not be called once finished, nor with data the grid cannot cover (CanInsert).
   void InsertRangeData(const sensor::RangeData& range_data_in_local,
                        const RangeDataInserter2D& inserter);
   void Finish();
+  // False if the grid would have to grow past ProbabilityGrid::kMaxCells (or the data are not
+  // finite) to hold `range_data_in_local`.
+  bool CanInsert(const sensor::RangeData& range_data_in_local) const;
 
   SubmapState2D ExportState() const;
 
@@ -84,6 +92,8 @@ class ActiveSubmaps2D {
 
   // Inserts into the active submaps and returns them, oldest first. The front one may have
   // just been finished by this call; that is how the caller learns to hand it to global SLAM.
+  // Returns nothing and changes nothing if a submap it would go into cannot hold the data
+  // (Submap2D::CanInsert): all or nothing.
   std::vector<std::shared_ptr<const Submap2D>> InsertRangeData(
       const sensor::RangeData& range_data_in_local);
 
