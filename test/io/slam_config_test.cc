@@ -108,6 +108,30 @@ TEST(SlamConfigTest, MissingFileFails) {
   EXPECT_NE(error.find("/nonexistent/fusemap.yaml"), std::string::npos) << error;
 }
 
+// Issue 18, item 4: configs that hung (resolution .inf, a NaN in T_tracking_laser), ran out of
+// memory (resolution 1e-9) or slipped through (max_time_s .nan) are refused, naming the key.
+TEST(SlamConfigTest, AbsurdNumbersAreRefusedWithFileLineAndKey) {
+  const struct {
+    const char* yaml;
+    const char* key;
+  } cases[] = {
+      {"local_slam:\n  submaps:\n    resolution_m: .inf\n", ":3: key 'local_slam.submaps.resolution_m'"},
+      {"local_slam:\n  submaps:\n    resolution_m: 1e-9\n", ":3: key 'local_slam.submaps.resolution_m'"},
+      {"local_slam:\n  submaps:\n    num_range_data: 2000000000\n",
+       ":3: key 'local_slam.submaps.num_range_data'"},
+      {"local_slam:\n  T_tracking_laser: [.nan, 0, 0]\n", ":2: key 'local_slam.T_tracking_laser'"},
+      {"local_slam:\n  motion_filter:\n    max_time_s: .nan\n",
+       ":3: key 'local_slam.motion_filter.max_time_s'"},
+  };
+  for (const auto& c : cases) {
+    const TempConfig file(c.yaml);
+    SlamConfig config;
+    std::string error;
+    EXPECT_FALSE(LoadSlamConfig(file.path(), &config, &error)) << c.yaml;
+    EXPECT_NE(error.find(file.path() + c.key), std::string::npos) << c.yaml << "\n" << error;
+  }
+}
+
 }  // namespace
 }  // namespace io
 }  // namespace fusemap

@@ -14,6 +14,8 @@ namespace common {
 // Reads a YAML options file into plain option structs. Every key a parse function asks for is
 // remembered, so that Finish() can report keys nobody asked for (typos) and values of the wrong
 // type, naming the file, line and key path. Missing keys leave the struct's default in place.
+// Refused outright (no reader): a directory or unreadable file, YAML syntax errors and keys
+// repeated in one mapping. Numbers must be finite (.inf and .nan are errors).
 class ConfigReader {
  public:
   // Loads a file; on failure returns nullptr and fills *error.
