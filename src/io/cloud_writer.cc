@@ -13,6 +13,8 @@
 #include <fstream>
 #include <unordered_map>
 
+#include "fusemap/io/ply_header.h"
+
 namespace fusemap {
 namespace io {
 namespace {
@@ -65,7 +67,7 @@ bool WriteCloudPcd(const std::string& path, const cloud::ColorCloud& cloud, std:
 }
 
 bool ReadCloudPly(const std::string& path, cloud::ColorCloud* cloud, std::string* error) {
-  if (!CanRead(path, error)) return false;
+  if (!CanRead(path, error) || !CheckPlyFileSize(path, error)) return false;
   try {
     if (pcl::io::loadPLYFile(path, *cloud) != 0) {
       return Fail(error, path + ": not a readable PLY point cloud");

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -36,9 +37,25 @@ bool ParseInt(const std::string& token, int* value) {
   return true;
 }
 
-// Parses fields[first, first + count) as finite doubles; on failure says which field and why.
+// Beyond these a value is corrupt, not a pose graph, and the solver would overflow (a cost of
+// inf): coordinates (1e9 m holds any planet-scale frame), angles, information entries.
+constexpr double kMaxAbsPoseValue = 1e9;
+constexpr double kMaxAbsInformation = 1e15;
+
+// g2o tags are upper case with digits, '_' and ':' (VERTEX_SE2, EDGE_SE3:QUAT, PARAMS_...).
+// Anything else is not a g2o line at all (binary or foreign data), not a tag to skip.
+bool LooksLikeTag(const std::string& token) {
+  if (token.empty() || token.size() > 64 || !(token[0] >= 'A' && token[0] <= 'Z')) return false;
+  for (char c : token) {
+    if (!((c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_' || c == ':')) return false;
+  }
+  return true;
+}
+
+// Parses fields[first, first + count) as finite doubles of magnitude at most max_abs; on
+// failure says which field and why.
 bool ParseDoubles(const std::vector<std::string>& fields, size_t first, size_t count,
-                  double* values, std::string* reason) {
+                  double max_abs, double* values, std::string* reason) {
   for (size_t i = 0; i < count; ++i) {
     const std::string& token = fields[first + i];
     char* end = nullptr;
@@ -49,6 +66,11 @@ bool ParseDoubles(const std::vector<std::string>& fields, size_t first, size_t c
     }
     if (!std::isfinite(values[i])) {
       *reason = "field " + std::to_string(first + i + 1) + " '" + token + "' is not finite";
+      return false;
+    }
+    if (std::abs(values[i]) > max_abs) {
+      *reason = "field " + std::to_string(first + i + 1) + " '" + token + "' is absurd (magnitude over " +
+                (max_abs == kMaxAbsPoseValue ? "1e9" : "1e15") + ")";
       return false;
     }
   }
@@ -92,7 +114,7 @@ bool ReadG2o(std::istream& in, const std::string& origin, G2oFile* file, std::st
         return Fail(origin, line_number, "vertex id '" + fields[1] + "' is not an integer", error);
       }
       double pose[3];
-      if (!ParseDoubles(fields, 2, 3, pose, &reason)) {
+      if (!ParseDoubles(fields, 2, 3, kMaxAbsPoseValue, pose, &reason)) {
         return Fail(origin, line_number, reason, error);
       }
       if (index_of_id.count(id)) {
@@ -121,7 +143,8 @@ bool ReadG2o(std::istream& in, const std::string& origin, G2oFile* file, std::st
                                              " to itself", error);
       }
       double v[9];
-      if (!ParseDoubles(fields, 3, 9, v, &reason)) {
+      if (!ParseDoubles(fields, 3, 3, kMaxAbsPoseValue, v, &reason) ||
+          !ParseDoubles(fields, 6, 6, kMaxAbsInformation, v + 3, &reason)) {
         return Fail(origin, line_number, reason, error);
       }
       pending.edge.T_from_to = common::Rigid2d(v[0], v[1], v[2]);
@@ -142,11 +165,16 @@ bool ReadG2o(std::istream& in, const std::string& origin, G2oFile* file, std::st
         }
         fixes.emplace_back(line_number, id);
       }
-    } else {
+    } else if (LooksLikeTag(tag)) {
       ++file->skipped_tags[tag];
+    } else {
+      return Fail(origin, line_number, "not a g2o line (no record tag such as VERTEX_SE2)", error);
     }
   }
   if (in.bad()) return Fail(origin, line_number, "read error", error);
+  if (file->num_vertex_lines == 0 && file->num_edge_lines == 0) {
+    return Fail(origin, line_number, "no VERTEX_SE2 or EDGE_SE2 line: not a 2D pose graph", error);
+  }
 
   if (graph.vertices.empty() && !edges.empty()) {
     std::set<int> ids;
@@ -183,6 +211,11 @@ bool ReadG2o(std::istream& in, const std::string& origin, G2oFile* file, std::st
 }
 
 bool ReadG2oFile(const std::string& path, G2oFile* file, std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    *error = path + ": is a directory, not a g2o file";
+    return false;
+  }
   std::ifstream in(path);
   if (!in) {
     *error = path + ": cannot open for reading";

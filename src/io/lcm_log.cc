@@ -2,6 +2,8 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include <filesystem>
+
 namespace fusemap {
 namespace io {
 
@@ -38,6 +40,11 @@ LcmLogReader::LcmLogReader() = default;
 LcmLogReader::~LcmLogReader() = default;
 
 bool LcmLogReader::Open(const std::string& path, std::string* error) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    if (error != nullptr) *error = path + ": is a directory, not an LCM log";
+    return false;
+  }
   file_ = std::make_unique<lcm::LogFile>(path, "r");
   if (!file_->good()) {
     file_.reset();

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <random>
 #include <sstream>
 
 #include "fusemap/common/math.h"
@@ -97,6 +98,46 @@ TEST(G2oReaderTest, EachErrorNamesFileAndLine) {
     EXPECT_FALSE(Read(c.text, &file, &error)) << c.text;
     EXPECT_EQ(error.rfind(c.expected, 0), 0u) << "got: " << error << "\nwanted: " << c.expected;
   }
+}
+
+// Issue 18, item 14: random bytes were read as a graph of skipped tags and optimised to exit 0;
+// values of 1e300 ran to final_cost=inf. Both are now errors naming file and line.
+TEST(G2oReaderTest, RandomBytesAndAbsurdValuesAreRefused) {
+  const struct {
+    std::string text;
+    std::string expected;
+  } cases[] = {
+      {"", "graph.g2o:0: no VERTEX_SE2 or EDGE_SE2 line"},
+      {"# only a comment\nVERTEX_XY 1 2 3\n", "graph.g2o:2: no VERTEX_SE2 or EDGE_SE2 line"},
+      {"VERTEX_SE2 0 0 0 0\n\x89PNG\x01\x02 7\n", "graph.g2o:2: not a g2o line"},
+      {"vertex_se2 0 0 0 0\n", "graph.g2o:1: not a g2o line"},
+      {"VERTEX_SE2 0 1e300 0 0\n", "graph.g2o:1: field 3 '1e300' is absurd"},
+      {"VERTEX_SE2 0 0 0 -2e9\n", "graph.g2o:1: field 5 '-2e9' is absurd"},
+      {"VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 0 0 0\nEDGE_SE2 0 1 1e300 0 0 1 0 0 1 0 1\n",
+       "graph.g2o:3: field 4 '1e300' is absurd"},
+      {"VERTEX_SE2 0 0 0 0\nVERTEX_SE2 1 0 0 0\nEDGE_SE2 0 1 1 0 0 1e300 0 0 1 0 1\n",
+       "graph.g2o:3: field 7 '1e300' is absurd"},
+  };
+  for (const auto& c : cases) {
+    G2oFile file;
+    std::string error;
+    EXPECT_FALSE(Read(c.text, &file, &error)) << c.text;
+    EXPECT_EQ(error.rfind(c.expected, 0), 0u) << "got: " << error << "\nwanted: " << c.expected;
+  }
+  // Random bytes with a fixed seed: always refused.
+  std::mt19937 rng(18);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::string junk(1 + rng() % 2000, '\0');
+    for (char& c : junk) c = static_cast<char>(rng());
+    G2oFile file;
+    std::string error;
+    EXPECT_FALSE(Read(junk, &file, &error)) << trial;
+    EXPECT_EQ(error.rfind("graph.g2o:", 0), 0u) << error;
+  }
+  G2oFile file;
+  std::string error;
+  EXPECT_FALSE(ReadG2oFile(::testing::TempDir(), &file, &error));
+  EXPECT_NE(error.find("is a directory"), std::string::npos) << error;
 }
 
 TEST(G2oReaderTest, WriteThenReadRoundTrips) {

@@ -89,6 +89,15 @@ TEST(LcmLogTest, OpenFailsWithMessage) {
   EXPECT_FALSE(writer.Write("X", 0, "a", 1));
 }
 
+// Issue 18, item 14: a directory opened "fine" and fusemap_offline then said it had no usable
+// scans.
+TEST(LcmLogTest, DirectoryIsNotALog) {
+  LcmLogReader reader;
+  std::string error;
+  EXPECT_FALSE(reader.Open(::testing::TempDir(), &error));
+  EXPECT_NE(error.find("is a directory"), std::string::npos) << error;
+}
+
 class OdometryCounter {
  public:
   void OnOdometry(const lcm::ReceiveBuffer*, const std::string& channel,

@@ -30,8 +30,10 @@ struct G2oFile {
 // Reads `VERTEX_SE2 id x y theta`, `EDGE_SE2 id1 id2 dx dy dtheta i11 i12 i13 i22 i23 i33` (the
 // upper triangle of the information matrix over x, y, theta) and `FIX id...`, in any order.
 // Blank lines and lines starting with '#' are ignored; unknown tags are skipped and counted.
-// Fails with `origin:line: reason` on a missing or extra field, a non-numeric or non-finite
-// field, a duplicate vertex id, an edge or FIX naming an unknown vertex, an edge from a vertex
+// Fails with `origin:line: reason` on a line without a tag-like first word (binary or foreign
+// data), a file with neither VERTEX_SE2 nor EDGE_SE2, a missing or extra field, a non-numeric,
+// non-finite or absurd field (a coordinate or angle over 1e9, information over 1e15), a
+// duplicate vertex id, an edge or FIX naming an unknown vertex, an edge from a vertex
 // to itself, or an information matrix that is not positive definite.
 bool ReadG2o(std::istream& in, const std::string& origin, G2oFile* file, std::string* error);
 bool ReadG2oFile(const std::string& path, G2oFile* file, std::string* error);
