@@ -19,6 +19,7 @@ bool DaemonOptions::IsValid(std::string* error) const {
     return fail("max_nonfinite_range_fraction must be in [0, 1]");
   }
   if (max_message_bytes < 1024) return fail("max_message_bytes must be >= 1024");
+  if (max_image_pixels < 1) return fail("max_image_pixels must be >= 1");
   if (!(bad_message_log_interval_s >= 0.0)) return fail("bad_message_log_interval_s must be >= 0");
   if (!(checkpoint_period_s >= 0.0)) return fail("checkpoint_period_s must be >= 0");
   if (!(time_reset_threshold_s >= 0.0)) return fail("time_reset_threshold_s must be >= 0");
@@ -39,6 +40,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("max_future_s", &options.max_future_s);
   reader.Get("max_nonfinite_range_fraction", &options.max_nonfinite_range_fraction);
   reader.Get("max_message_bytes", &options.max_message_bytes);
+  reader.Get("max_image_pixels", &options.max_image_pixels);
   reader.Get("bad_message_log_interval_s", &options.bad_message_log_interval_s);
   reader.Get("checkpoint_period_s", &options.checkpoint_period_s);
   reader.Get("time_reset_threshold_s", &options.time_reset_threshold_s);

@@ -204,7 +204,7 @@ void Engine::RunRgbd() {
   using Clock = std::chrono::steady_clock;
   if (!cloud_worker_) {
     while (auto frame = intake_.rgbd_queue().Pop()) {
-      if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
+      if (rgbd_consumer_ && intake_.DecodeImages(&*frame)) rgbd_consumer_(std::move(*frame));
     }
     return;
   }
@@ -217,7 +217,8 @@ void Engine::RunRgbd() {
   };
   while (!intake_.rgbd_queue().closed_and_drained()) {
     take_poses(Clock::now() - kRgbdPoll);
-    if (auto frame = intake_.rgbd_queue().PopUntil(Clock::now() + kRgbdPoll)) {
+    auto frame = intake_.rgbd_queue().PopUntil(Clock::now() + kRgbdPoll);
+    if (frame && intake_.DecodeImages(&*frame)) {
       cloud_worker_->AddFrame(frame->frame);
       if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
     }

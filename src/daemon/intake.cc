@@ -132,8 +132,16 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
       if (!decode_rgbd_) return false;
       RgbdMessage rgbd;
       rgbd.received = received;
-      if (!io::DecodeRgbdFrame(data, size, &rgbd.frame, &error)) {
+      if (!io::DecodeRgbdFrameHeader(data, size, &rgbd.frame, &rgbd.images, &error)) {
         return Reject(input, "undecodable RGB-D frame", error);
+      }
+      for (const sensor::PinholeIntrinsics* k : {&rgbd.frame.color_intrinsics, &rgbd.frame.depth_intrinsics}) {
+        if (int64_t{k->width} * k->height > options_.max_image_pixels) {
+          return Reject(input, "RGB-D image too large",
+                        std::to_string(k->width) + "x" + std::to_string(k->height) +
+                            " pixels, more than daemon.max_image_pixels " +
+                            std::to_string(options_.max_image_pixels) + "; dropped");
+        }
       }
       if (!CheckStamp(input, &rgbd.frame.stamp_s)) return false;
       return rgbd_queue_.Push(std::move(rgbd));
@@ -142,6 +150,15 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
       break;
   }
   return false;
+}
+
+bool Intake::DecodeImages(RgbdMessage* message) {
+  std::string error;
+  if (!io::DecodeRgbdImages(message->images, &message->frame, &error)) {
+    return Reject(kRgbdChannel, "undecodable RGB-D frame", error);
+  }
+  message->images = io::RgbdImageData();
+  return true;
 }
 
 void Intake::Close() {

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "fusemap/io/lcm_conversions.h"
+#include "fusemap/io/rgbd_conversions.h"
+#include "fusemap_lcm/rgbd_frame_t.hpp"
 
 namespace fusemap {
 namespace daemon {
@@ -165,6 +167,73 @@ TEST_F(IntakeTest, SeededStampsRejectOlderInputAndTimeResetCanBeDisabled) {
   EXPECT_FALSE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 60.0))));
   EXPECT_TRUE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 9.0))));
   EXPECT_EQ(intake.time_resets(), 0);
+}
+
+sensor::RgbdFrame SmallFrame(double stamp_s) {
+  sensor::RgbdFrame frame;
+  frame.stamp_s = stamp_s;
+  frame.frame = "camera";
+  frame.color_intrinsics = sensor::PinholeIntrinsics{32, 24, 30.0, 30.0, 16.0, 12.0};
+  frame.depth_intrinsics = frame.color_intrinsics;
+  frame.color_rgb.assign(32 * 24 * 3, 100);
+  frame.depth_mm.assign(32 * 24, 1500);
+  return frame;
+}
+
+// Re-encodes a frame's message after `edit` (a hostile sender).
+template <typename Edit>
+std::vector<uint8_t> EditedFrame(double stamp_s, Edit edit) {
+  std::vector<uint8_t> bytes;
+  std::string error;
+  EXPECT_TRUE(io::EncodeRgbdFrame(SmallFrame(stamp_s), io::RgbdEncodeOptions(), &bytes, &error)) << error;
+  fusemap_lcm::rgbd_frame_t msg;
+  msg.decode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  edit(&msg);
+  msg.color_size = static_cast<int32_t>(msg.color_data.size());
+  msg.depth_size = static_cast<int32_t>(msg.depth_data.size());
+  bytes.resize(msg.getEncodedSize());
+  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+  return bytes;
+}
+
+// Issue 18, items 1 and 2: an empty image aborted the daemon on the handler thread; images are
+// now only checked there (size from their headers) and decoded by whoever pops the queue, and
+// a body that does not decode is counted as malformed then.
+TEST_F(IntakeTest, RgbdImagesAreCheckedOnTheHandlerAndDecodedByTheConsumer) {
+  auto intake = Make(OverflowPolicy::kBlock);
+  intake->set_decode_rgbd(true);
+  EXPECT_FALSE(Send(*intake, "RGBD", EditedFrame(kNowS - 3.0, [](auto* m) { m->color_data.clear(); })));
+  EXPECT_FALSE(Send(*intake, "RGBD", EditedFrame(kNowS - 2.9, [](auto* m) { m->depth_data.clear(); })));
+  EXPECT_EQ(intake->counters(kRgbdChannel).malformed, 2);
+  // A valid frame is queued with its images still compressed.
+  EXPECT_TRUE(Send(*intake, "RGBD", EditedFrame(kNowS - 2.0, [](auto*) {})));
+  // A frame whose JPEG header is fine but whose body is garbage passes the handler.
+  EXPECT_TRUE(Send(*intake, "RGBD", EditedFrame(kNowS - 1.0, [](auto* m) {
+    for (size_t i = m->depth_data.size() / 2; i < m->depth_data.size(); ++i) m->depth_data[i] ^= 0x5a;
+  })));
+  EXPECT_EQ(intake->counters(kRgbdChannel).malformed, 2);
+  auto good = intake->rgbd_queue().Pop();
+  ASSERT_TRUE(good.has_value());
+  EXPECT_TRUE(good->frame.color_rgb.empty());
+  EXPECT_FALSE(good->images.color_data.empty());
+  ASSERT_TRUE(intake->DecodeImages(&*good));
+  EXPECT_EQ(good->frame.depth_mm, SmallFrame(0.0).depth_mm);
+  EXPECT_EQ(good->frame.color_rgb.size(), 32u * 24u * 3u);
+  auto bad = intake->rgbd_queue().Pop();
+  ASSERT_TRUE(bad.has_value());
+  EXPECT_FALSE(intake->DecodeImages(&*bad));
+  EXPECT_EQ(intake->counters(kRgbdChannel).malformed, 3);
+}
+
+// The configured camera bound: larger images are refused before anything is decoded.
+TEST_F(IntakeTest, RgbdImagesOverTheCameraBoundAreRejected) {
+  DaemonOptions options;
+  options.max_image_pixels = 32 * 23;
+  Intake intake(io::SlamConfig(), options, OverflowPolicy::kBlock, &log_, [] { return kNowS; });
+  intake.set_decode_rgbd(true);
+  EXPECT_FALSE(Send(intake, "RGBD", EditedFrame(kNowS - 1.0, [](auto*) {})));
+  EXPECT_EQ(intake.counters(kRgbdChannel).malformed, 1);
+  EXPECT_NE(lines_.back().find("more than daemon.max_image_pixels 736"), std::string::npos) << lines_.back();
 }
 
 }  // namespace

@@ -27,6 +27,9 @@ struct DaemonOptions {
   // Scans with a larger share of NaN/inf ranges are rejected as broken.
   double max_nonfinite_range_fraction = 0.5;
   int max_message_bytes = 32 << 20;
+  // RGB-D frames whose colour or depth image has more pixels are rejected before decoding
+  // (the camera bound; 4096 x 4096 by default, above any current RGB-D camera).
+  int max_image_pixels = 4096 * 4096;
   // Seconds between malformed-message log lines of one kind.
   double bad_message_log_interval_s = 10.0;
   // Seconds between checkpoints; 0 = only at shutdown.

@@ -13,6 +13,7 @@
 #include "fusemap/daemon/daemon_options.h"
 #include "fusemap/daemon/health.h"
 #include "fusemap/daemon/rate_limited_log.h"
+#include "fusemap/io/rgbd_conversions.h"
 #include "fusemap/io/slam_config.h"
 #include "fusemap/sensor/rgbd_frame.h"
 #include "fusemap/sensor/sensor_types.h"
@@ -31,9 +32,12 @@ struct SensorMessage {
   std::variant<sensor::LaserScan, sensor::OdometryData, sensor::ImuData> data;
 };
 
+// An RGB-D frame as the handler thread queues it: checked, with its images still compressed
+// (`frame` has no pixels yet); Intake::DecodeImages, on the RGB-D thread, fills them in.
 struct RgbdMessage {
   std::chrono::steady_clock::time_point received;
   sensor::RgbdFrame frame;
+  io::RgbdImageData images;
 };
 
 // The edge between the wire and the SLAM threads: decodes and validates raw LCM messages and
@@ -62,6 +66,11 @@ class Intake {
   // RGB-D frames are decoded only when someone consumes them (JPEG/PNG decoding is costly);
   // otherwise they are counted as received and ignored.
   void set_decode_rgbd(bool decode) { decode_rgbd_ = decode; }
+  // Decodes a queued RGB-D message's images into message->frame (the costly part, kept off the
+  // handler thread so that a large frame cannot stall the other channels). False, counted as
+  // malformed and logged, if the image data does not decode to what its header declared.
+  // Callable from the thread that pops rgbd_queue(), concurrently with OnMessage.
+  bool DecodeImages(RgbdMessage* message);
   // Stops intake: queued items can still be popped (drain), new ones are refused.
   void Close();
   // Before any message: nothing stamped before `stamp_s` is accepted (after --resume, the
