@@ -110,9 +110,17 @@ TagDetector::~TagDetector() {
   impl_->destroy_family(impl_->family);
 }
 
+int TagDetector::MinImageSidePx() const {
+  // The smallest family (tag25h9) is 9 cells wide with its white border; at two pixels per
+  // cell that is 18 pixels.
+  constexpr int kMinTagSidePx = 18;
+  constexpr int kMinDecimatedSidePx = 8;
+  return std::max(kMinTagSidePx, static_cast<int>(std::ceil(kMinDecimatedSidePx * options_.quad_decimate)));
+}
+
 std::vector<TagDetection> TagDetector::Detect(const GreyImage& image) const {
-  assert(image.width > 0 && image.height > 0);
   assert(image.pixels.size() == static_cast<size_t>(image.width) * image.height);
+  if (image.width < MinImageSidePx() || image.height < MinImageSidePx()) return {};
   // The library only reads the buffer; image_u8_t merely lacks const.
   image_u8_t view{image.width, image.height, image.width,
                   const_cast<uint8_t*>(image.pixels.data())};

@@ -161,6 +161,33 @@ TEST(TagDetectorTest, BlankImageHasNoDetections) {
   EXPECT_TRUE(detector->Detect(image).empty());
 }
 
+// Issue 18, item 5: libapriltag segfaulted on 1x1, 2x2 and 100x1 images. Tiny images give no
+// detections; the smallest accepted ones (with decimation too) are detected on without a crash.
+TEST(TagDetectorTest, TinyImagesGiveNoDetectionsAndDoNotCrash) {
+  for (double decimate : {1.0, 2.0, 3.5}) {
+    TagDetectorOptions options;
+    options.quad_decimate = decimate;
+    std::string error;
+    const auto detector = TagDetector::Create(options, &error);
+    ASSERT_NE(detector, nullptr) << error;
+    const int min_side = detector->MinImageSidePx();
+    const std::vector<std::pair<int, int>> sizes = {
+        {1, 1}, {2, 2}, {100, 1}, {1, 100}, {min_side - 1, 200}, {200, min_side - 1},
+        {min_side, min_side}, {min_side + 1, min_side + 3}, {min_side, 64}};
+    for (const auto& [width, height] : sizes) {
+      GreyImage image;
+      image.width = width;
+      image.height = height;
+      image.pixels.resize(static_cast<size_t>(width) * height);
+      // A checkerboard of 3-pixel squares: edges everywhere for the quad finder to chew on.
+      for (int v = 0; v < height; ++v) {
+        for (int u = 0; u < width; ++u) image.pixels[v * width + u] = ((u / 3 + v / 3) % 2) ? 255 : 0;
+      }
+      EXPECT_TRUE(detector->Detect(image).empty()) << width << "x" << height << " decimate " << decimate;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace ground_truth
 }  // namespace fusemap

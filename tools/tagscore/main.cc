@@ -13,6 +13,7 @@
 #include "fusemap/ground_truth/tag_detector.h"
 #include "fusemap/ground_truth/tag_ground_truth.h"
 #include "fusemap/ground_truth/trajectory_score.h"
+#include "fusemap/io/image_file.h"
 #include "fusemap/io/lcm_log.h"
 #include "fusemap/io/report_writer.h"
 #include "fusemap/io/rgbd_conversions.h"
@@ -25,6 +26,7 @@ namespace {
 constexpr char kUsage[] =
     "Usage:\n"
     "  fusemap_tagscore detect IMAGE... [--family tag36h11] [--refine-edges]\n"
+    "      IMAGE: PNG or JPEG, at most 8192 pixels per side.\n"
     "      Prints `image id cx cy x0 y0 x1 y1 x2 y2 x3 y3` per tag (AprilTag 3 corner order:\n"
     "      counter-clockwise in the image starting bottom-left of the upright tag; pixel\n"
     "      centres at +0.5).\n"
@@ -96,9 +98,11 @@ int Detect(const std::map<std::string, std::string>& flags,
   auto detector = ground_truth::TagDetector::Create(options, &error);
   if (detector == nullptr) return Fail("detect: " + error);
   for (const std::string& path : images) {
-    if (!std::filesystem::is_regular_file(path)) return Fail(path + ": no such file");
-    const cv::Mat mat = cv::imread(path, cv::IMREAD_GRAYSCALE);
-    if (mat.empty()) return Fail(path + ": cannot decode as an image");
+    if (!std::filesystem::exists(path)) return Fail(path + ": no such file");
+    cv::Mat mat;
+    if (!io::ReadImageFile(path, cv::IMREAD_GRAYSCALE, io::kMaxImageSide, &mat, &error)) {
+      return Fail(error);
+    }
     ground_truth::GreyImage image;
     image.width = mat.cols;
     image.height = mat.rows;

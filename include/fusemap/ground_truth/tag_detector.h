@@ -64,8 +64,12 @@ class TagDetector {
   TagDetector(const TagDetector&) = delete;
   TagDetector& operator=(const TagDetector&) = delete;
 
-  // Detections sorted by id, then by centre x.
+  // Detections sorted by id, then by centre x. An image narrower or lower than
+  // MinImageSidePx() holds no tag and gives none (libapriltag itself crashes on such images).
   std::vector<TagDetection> Detect(const GreyImage& image) const;
+  // The smallest side a tag fits in, and that the decimated image still has two of the
+  // library's 4-pixel threshold tiles across.
+  int MinImageSidePx() const;
 
   const TagDetectorOptions& options() const { return options_; }
 
