@@ -1,5 +1,6 @@
 // Optimises a 2D g2o pose graph (VERTEX_SE2 / EDGE_SE2 / FIX) with the sparse pose adjustment
 // of fusemap_pose_graph and prints the costs. See --help.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -114,6 +115,11 @@ int main(int argc, char** argv) {
   std::printf("chi2 before %.6g after %.6g; %s\n", 2.0 * summary.initial_cost,
               2.0 * summary.final_cost,
               summary.converged ? "converged" : "NOT converged (iteration limit or failure)");
+  if (!std::isfinite(summary.initial_cost) || !std::isfinite(summary.final_cost)) {
+    std::fprintf(stderr, "fusemap_g2o: %s: optimisation failed: cost is not finite (initial %g, final %g)\n",
+                 in_path.c_str(), summary.initial_cost, summary.final_cost);
+    return 1;
+  }
   if (!out_path.empty()) {
     if (!fusemap::io::WriteG2oFile(out_path, graph, &error)) {
       std::fprintf(stderr, "fusemap_g2o: %s\n", error.c_str());
