@@ -18,3 +18,9 @@ if(TARGET fusemapd AND TARGET fusemap_sim_tool)
                    $<TARGET_FILE:fusemapd> $<TARGET_FILE:fusemap_sim_tool> ${PROJECT_SOURCE_DIR})
   set_tests_properties(daemon_kill_resume PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
 endif()
+# The far-odometry replay runs fusemap_offline itself.
+if(TARGET daemon_far_odometry_replay_test AND TARGET fusemap_offline)
+  add_dependencies(daemon_far_odometry_replay_test fusemap_offline)
+  target_compile_definitions(daemon_far_odometry_replay_test PRIVATE
+    FUSEMAP_OFFLINE_BINARY="$<TARGET_FILE:fusemap_offline>")
+endif()

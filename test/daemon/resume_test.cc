@@ -17,6 +17,7 @@
 #include "fusemap/daemon/resume.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/tum_trajectory.h"
+#include "testing/null_publisher.h"
 #include "testing/room_drive_log.h"
 #include "testing/room_slam_config.h"
 #include "testing/synthetic_room.h"
@@ -44,13 +45,7 @@ std::vector<Message> MakeLog() {
   return log;
 }
 
-class NullPublisher : public Publisher {
- public:
-  void PublishPose(double, const common::Rigid2d&) override {}
-  void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot&) override {}
-  void PublishLoopClosure(double, int, const pose_graph::PoseGraph2D::Stats&, int) override {}
-  void PublishHealth(double, const HealthReport&) override {}
-};
+using test_world::NullPublisher;
 
 // With checkpoint_period_s tiny the engine offers a save after every processed message; this
 // one writes only after the `at_call`-th, i.e. after exactly that many queued messages.

@@ -173,12 +173,7 @@ TEST(ProbabilityGridRangeDataInserterOptionsTest, ParseAndValidate) {
 TEST(RangeDataInserter2DTest, RefusesAbsurdRangeDataAndLeavesTheGridUnchanged) {
   ProbabilityGridRangeDataInserterOptions options;
   RangeDataInserter2D inserter(options);
-  MapLimits limits;
-  limits.resolution_m = 0.05;
-  limits.origin_m = Eigen::Vector2d(-2.5, -2.5);
-  limits.num_x_cells = 100;
-  limits.num_y_cells = 100;
-  ProbabilityGrid grid(limits);
+  ProbabilityGrid grid = SmallGrid();
   sensor::RangeData far;
   far.origin = Eigen::Vector2f(0.f, 0.f);
   far.returns.push_back(Eigen::Vector2f(1.f, 0.f));
@@ -187,7 +182,7 @@ TEST(RangeDataInserter2DTest, RefusesAbsurdRangeDataAndLeavesTheGridUnchanged) {
   sensor::RangeData nan = far;
   nan.returns[1] = Eigen::Vector2f(std::nanf(""), 0.f);
   EXPECT_FALSE(inserter.Insert(nan, &grid));
-  EXPECT_EQ(grid.limits().num_x_cells, 100);
+  EXPECT_EQ(grid.limits().num_x_cells, SmallGrid().limits().num_x_cells);
   Eigen::Array2i lo, hi;
   EXPECT_FALSE(grid.ComputeKnownBounds(&lo, &hi));
   far.returns.pop_back();
