@@ -264,6 +264,8 @@ bool DecodeRgbdFrameHeader(const void* data, int size, sensor::RgbdFrame* frame,
 bool DecodeRgbdImages(const RgbdImageData& images, sensor::RgbdFrame* frame, std::string* error) {
   const sensor::PinholeIntrinsics& kc = frame->color_intrinsics;
   const sensor::PinholeIntrinsics& kd = frame->depth_intrinsics;
+  // Cheap, and keeps the raw copies below in bounds whoever calls this.
+  if (!CheckColor(images, kc, error) || !CheckDepth(images, kd, error)) return false;
   std::vector<uint8_t> color_rgb;
   if (images.color_encoding == "jpeg") {
     const cv::Mat bgr = ImDecode(images.color_data, cv::IMREAD_COLOR);

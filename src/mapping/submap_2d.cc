@@ -1,6 +1,7 @@
 #include "fusemap/mapping/submap_2d.h"
 
 #include <cassert>
+#include <cstdio>
 #include <utility>
 
 namespace fusemap {
@@ -31,8 +32,9 @@ bool SubmapsOptions::IsValid(std::string* error) const {
     return false;
   }
   if (!(resolution_m >= kMinResolutionM && resolution_m <= kMaxResolutionM)) {
-    *error = "resolution_m must lie in [" + std::to_string(kMinResolutionM).substr(0, 5) + ", " +
-             std::to_string(kMaxResolutionM).substr(0, 3) + "]";
+    char text[64];
+    std::snprintf(text, sizeof(text), "resolution_m must lie in [%g, %g]", kMinResolutionM, kMaxResolutionM);
+    *error = text;
     return false;
   }
   return range_data_inserter.IsValid(error);

@@ -44,9 +44,10 @@ struct RgbdImageData {
 bool DecodeRgbdFrameHeader(const void* data, int size, sensor::RgbdFrame* frame,
                            RgbdImageData* images, std::string* error);
 
-// The costly half: decodes `images` into frame->color_rgb and frame->depth_mm, for a frame and
-// images DecodeRgbdFrameHeader accepted. Fails on image data that cannot be decoded or decodes
-// to another size or type than its header declared.
+// The costly half: decodes `images` into frame->color_rgb and frame->depth_mm (sizes from the
+// frame's intrinsics, as DecodeRgbdFrameHeader filled them). Repeats the cheap checks, and
+// fails on image data that cannot be decoded or decodes to another size or type than its
+// header declared.
 bool DecodeRgbdImages(const RgbdImageData& images, sensor::RgbdFrame* frame, std::string* error);
 
 // Both halves. Rejects with a reason: a wrong fingerprint, truncated or trailing bytes, bad
