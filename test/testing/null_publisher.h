@@ -6,8 +6,7 @@
 namespace fusemap {
 namespace test_world {
 
-// A daemon publisher that drops everything: for engine tests that look at the engine's state
-// and output files only.
+// A daemon publisher that drops everything, for engine tests that only look at the result.
 class NullPublisher : public daemon::Publisher {
  public:
   void PublishPose(double, const common::Rigid2d&) override {}
