@@ -52,6 +52,7 @@ void StampFilter::SetResumePoint(int channel, double stamp_s) {
 }
 
 void StampFilter::Accept(int channel, double rebased_s) {
+  resume_s_[channel] = kNever;  // the stream has passed the checkpoint
   last_s_[channel] = rebased_s;
   newest_s_ = std::max(newest_s_, rebased_s);
 }
@@ -74,14 +75,13 @@ StampFilter::Decision StampFilter::Check(int channel, double raw_s) {
                              options_.min_stamp_s, options_.max_stamp_s);
     return decision;
   }
-  if (resume_s_[channel] != kNever) {
-    if (raw_s <= resume_s_[channel]) {
-      decision.verdict = Verdict::kSkip;
-      decision.reason = Format("stamp %.6f is at or before the checkpoint's %.6f: already mapped",
-                               raw_s, resume_s_[channel]);
-      return decision;
-    }
-    resume_s_[channel] = kNever;  // the stream has passed the checkpoint
+  // Until a message of the channel is accepted past the checkpoint (an outlier held on the
+  // way does not count), whatever the checkpoint already holds is skipped.
+  if (resume_s_[channel] != kNever && raw_s <= resume_s_[channel]) {
+    decision.verdict = Verdict::kSkip;
+    decision.reason = Format("stamp %.6f is at or before the checkpoint's %.6f: already mapped",
+                             raw_s, resume_s_[channel]);
+    return decision;
   }
   Suspect& suspect = suspects_[channel];
   Held held = Held::kNone;

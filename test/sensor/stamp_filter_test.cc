@@ -129,6 +129,21 @@ TEST(StampFilterTest, ResumePointSkipsAlreadyMappedData) {
   EXPECT_TRUE(filter.Check(kLaser, kT0).time_reset);
 }
 
+// An outlier in the replayed part must not end the skipping: the data after it up to the
+// checkpoint is still already mapped, not "going backwards".
+TEST(StampFilterTest, OutlierBeforeTheResumePointDoesNotEndTheSkipping) {
+  StampFilter filter = MakeFilter();
+  filter.SetResumePoint(kOdometry, kT0 + 100.0);
+  EXPECT_EQ(filter.Check(kOdometry, kT0 + 1.0).verdict, Verdict::kSkip);
+  EXPECT_EQ(filter.Check(kOdometry, kT0 + 1e6).verdict, Verdict::kHold);
+  for (int i = 2; i <= 100; ++i) {
+    EXPECT_EQ(filter.Check(kOdometry, kT0 + i).verdict, Verdict::kSkip) << i;
+  }
+  const auto d = filter.Check(kOdometry, kT0 + 100.5);
+  EXPECT_EQ(d.verdict, Verdict::kAccept);
+  EXPECT_EQ(d.held, Held::kDrop);
+}
+
 TEST(StampFilterTest, OptionsValidated) {
   std::string error;
   EXPECT_TRUE(StampFilterOptions().IsValid(&error));
