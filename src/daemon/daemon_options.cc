@@ -22,9 +22,17 @@ bool DaemonOptions::IsValid(std::string* error) const {
   if (max_image_pixels < 1) return fail("max_image_pixels must be >= 1");
   if (!(bad_message_log_interval_s >= 0.0)) return fail("bad_message_log_interval_s must be >= 0");
   if (!(checkpoint_period_s >= 0.0)) return fail("checkpoint_period_s must be >= 0");
-  if (!(time_reset_threshold_s >= 0.0)) return fail("time_reset_threshold_s must be >= 0");
+  if (!stamp_filter().IsValid(error)) return false;
   if (!(release_memory_period_s >= 0.0)) return fail("release_memory_period_s must be >= 0");
   return true;
+}
+
+sensor::StampFilterOptions DaemonOptions::stamp_filter() const {
+  sensor::StampFilterOptions options;
+  options.max_jump_s = max_stamp_jump_s;
+  options.time_reset_threshold_s = time_reset_threshold_s;
+  options.max_time_reset_s = max_time_reset_s;
+  return options;
 }
 
 DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
@@ -44,6 +52,8 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("bad_message_log_interval_s", &options.bad_message_log_interval_s);
   reader.Get("checkpoint_period_s", &options.checkpoint_period_s);
   reader.Get("time_reset_threshold_s", &options.time_reset_threshold_s);
+  reader.Get("max_stamp_jump_s", &options.max_stamp_jump_s);
+  reader.Get("max_time_reset_s", &options.max_time_reset_s);
   reader.Get("release_memory_period_s", &options.release_memory_period_s);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("daemon", error);

@@ -63,8 +63,20 @@ void Engine::Restore(const pose_graph::MapBuilderState2D& state,
   assert(!started_);
   builder_ = pose_graph::MapBuilder2D::Restore(slam_.map_builder, executor_.get(), state);
   ConnectBuilder();
-  intake_.SeedStamps(LastStateStamp(state));
-  last_stamp_s_ = std::max(0.0, LastStateStamp(state));
+  // A replay restarted from its beginning must not be mapped again: each channel skips what
+  // the checkpoint already holds (odometry: its record; the rest: up to the last node).
+  const double state_s = LastStateStamp(state);
+  double odometry_s = !odometry.empty() ? odometry.back().stamp_s
+                      : archive_       ? archive_->mark().last_odometry_stamp_s
+                                       : -std::numeric_limits<double>::infinity();
+  if (!(odometry_s > -std::numeric_limits<double>::infinity())) odometry_s = state_s;
+  if (state_s > -std::numeric_limits<double>::infinity()) {
+    for (InputChannel channel : {kLidarChannel, kImuChannel, kRgbdChannel}) {
+      intake_.SetResumePoint(channel, state_s);
+    }
+    intake_.SetResumePoint(kOdometryChannel, odometry_s);
+  }
+  last_stamp_s_ = std::max(0.0, state_s);
   odometry_ = std::move(odometry);
 }
 

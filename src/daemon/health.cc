@@ -60,7 +60,9 @@ std::string FormatHealth(const HealthReport& report) {
                 report.uptime_s, report.nodes, report.submaps, report.constraints,
                 report.loop_closures, report.optimizations);
   std::string line = buffer;
+  int64_t skipped = 0;
   for (const auto& c : report.channels) {
+    skipped += c.skipped;
     std::snprintf(buffer, sizeof(buffer), " %s=%lld/%lld/%lld/q%d", c.name.c_str(),
                   static_cast<long long>(c.received), static_cast<long long>(c.dropped),
                   static_cast<long long>(c.malformed), c.queue_depth);
@@ -72,7 +74,9 @@ std::string FormatHealth(const HealthReport& report) {
                 report.latency.median_ms, report.latency.p99_ms, report.rss_bytes / 1048576.0,
                 report.checkpoint_failures, static_cast<long long>(report.time_resets),
                 report.trimmed_submaps, report.trimmed_nodes);
-  return line + buffer;
+  line += buffer;
+  if (skipped > 0) line += " resume_skipped=" + std::to_string(skipped);
+  return line;
 }
 
 }  // namespace daemon

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <type_traits>
+#include <utility>
 
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/rgbd_conversions.h"
@@ -26,12 +28,11 @@ Intake::Intake(const io::SlamConfig& slam, const DaemonOptions& options, Overflo
       log_(log),
       wall_clock_s_(wall_clock_s ? std::move(wall_clock_s) : WallClock(SystemClockSeconds)),
       names_{slam.channels.lidar, slam.channels.odometry, slam.channels.imu, slam.channels.rgbd},
+      stamp_filter_(options.stamp_filter(), kNumInputChannels, kLidarChannel),
       sensor_queue_(options.sensor_queue_size, policy,
                     [this](const SensorMessage& m) { ++counters_[m.channel].dropped; }),
       rgbd_queue_(options.rgbd_queue_size, policy,
-                  [this](const RgbdMessage&) { ++counters_[kRgbdChannel].dropped; }) {
-  last_stamp_s_.fill(-std::numeric_limits<double>::infinity());
-}
+                  [this](const RgbdMessage&) { ++counters_[kRgbdChannel].dropped; }) {}
 
 bool Intake::Reject(InputChannel channel, const std::string& kind, const std::string& why) {
   ++counters_[channel].malformed;
@@ -39,43 +40,70 @@ bool Intake::Reject(InputChannel channel, const std::string& kind, const std::st
   return false;
 }
 
-bool Intake::CheckStamp(InputChannel channel, double* stamp_s) {
-  char buffer[200];
+template <typename Message>
+bool Intake::CheckStamp(InputChannel channel, double* stamp_s, Message* message) {
   const double now_s = wall_clock_s_();
   if (*stamp_s > now_s + options_.max_future_s) {
+    char buffer[160];
     std::snprintf(buffer, sizeof(buffer), "stamp %.6f is %.1f s ahead of the clock; dropped",
                   *stamp_s, *stamp_s - now_s);
     return Reject(channel, "timestamp from the future", buffer);
   }
-  double rebased_s = *stamp_s + time_offset_s_;
-  const double last_s = last_stamp_s_[channel];
-  if (channel == kLidarChannel && options_.time_reset_threshold_s > 0.0 &&
-      rebased_s < last_s - options_.time_reset_threshold_s) {
-    const double jump_s = last_s - rebased_s;
-    time_offset_s_ += jump_s + kTimeResetGapS;
-    rebased_s = *stamp_s + time_offset_s_;
+  using Verdict = sensor::StampFilter::Verdict;
+  using Held = sensor::StampFilter::Held;
+  const sensor::StampFilter::Decision decision = stamp_filter_.Check(channel, *stamp_s);
+  if (decision.time_reset) {
     ++time_resets_;
-    if (log_ != nullptr) {
-      std::snprintf(buffer, sizeof(buffer),
-                    "scan stamp %.6f is %.1f s before the previous one: new time base, incoming "
-                    "stamps now shifted by %+.6f s",
-                    *stamp_s, jump_s, time_offset_s_);
-      log_->Report(names_[channel] + ": time reset", buffer);
+    if (log_ != nullptr) log_->Report(names_[channel] + ": time reset", decision.reason);
+  }
+  std::optional<Message> held;
+  if constexpr (std::is_same_v<Message, RgbdMessage>) {
+    held = std::move(held_rgbd_);
+    held_rgbd_.reset();
+  } else {
+    held = std::move(held_[channel]);
+    held_[channel].reset();
+  }
+  if (decision.held == Held::kRelease && held) {
+    // Counted as malformed while held; the new time base is confirmed.
+    --counters_[channel].malformed;
+    if constexpr (std::is_same_v<Message, RgbdMessage>) {
+      held->frame.stamp_s = decision.held_stamp_s;
+    } else {
+      std::visit([&](auto& data) { data.stamp_s = decision.held_stamp_s; }, held->data);
     }
+    Enqueue(channel, std::move(*held));
+  } else if (decision.held == Held::kDrop && log_ != nullptr) {
+    log_->Report(names_[channel] + ": timestamp jump", decision.held_reason);
   }
-  if (rebased_s < last_s) {
-    std::snprintf(buffer, sizeof(buffer), "stamp %.6f is before the previous %.6f; dropped",
-                  rebased_s, last_s);
-    return Reject(channel, "timestamp going backwards", buffer);
+  switch (decision.verdict) {
+    case Verdict::kAccept:
+      *stamp_s = decision.stamp_s;
+      return true;
+    case Verdict::kSkip:
+      ++counters_[channel].skipped;
+      return false;
+    case Verdict::kHold:
+      Reject(channel, decision.kind, decision.reason);
+      if constexpr (std::is_same_v<Message, RgbdMessage>) {
+        held_rgbd_ = std::move(*message);
+      } else {
+        held_[channel] = std::move(*message);
+      }
+      return false;
+    case Verdict::kReject:
+      break;
   }
-  last_stamp_s_[channel] = rebased_s;
-  *stamp_s = rebased_s;
-  return true;
+  return Reject(channel, decision.kind, decision.reason);
 }
 
 bool Intake::Enqueue(InputChannel channel, SensorMessage message) {
   message.channel = channel;
   return sensor_queue_.Push(std::move(message));
+}
+
+bool Intake::Enqueue(InputChannel, RgbdMessage message) {
+  return rgbd_queue_.Push(std::move(message));
 }
 
 bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
@@ -108,8 +136,10 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
                       std::to_string(stats.nonfinite_ranges) + " of " +
                           std::to_string(scan.ranges_m.size()) + " ranges are NaN/inf; dropped");
       }
-      if (!CheckStamp(input, &scan.stamp_s)) return false;
       message.data = std::move(scan);
+      if (!CheckStamp(input, &std::get<sensor::LaserScan>(message.data).stamp_s, &message)) {
+        return false;
+      }
       return Enqueue(input, std::move(message));
     }
     case kOdometryChannel: {
@@ -117,15 +147,19 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
       if (!io::DecodeOdometry(data, size, &odometry, &error)) {
         return Reject(input, "undecodable odometry", error);
       }
-      if (!CheckStamp(input, &odometry.stamp_s)) return false;
       message.data = odometry;
+      if (!CheckStamp(input, &std::get<sensor::OdometryData>(message.data).stamp_s, &message)) {
+        return false;
+      }
       return Enqueue(input, std::move(message));
     }
     case kImuChannel: {
       sensor::ImuData imu;
       if (!io::DecodeImu(data, size, &imu, &error)) return Reject(input, "undecodable IMU", error);
-      if (!CheckStamp(input, &imu.stamp_s)) return false;
       message.data = imu;
+      if (!CheckStamp(input, &std::get<sensor::ImuData>(message.data).stamp_s, &message)) {
+        return false;
+      }
       return Enqueue(input, std::move(message));
     }
     case kRgbdChannel: {
@@ -143,8 +177,8 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
                             std::to_string(options_.max_image_pixels) + "; dropped");
         }
       }
-      if (!CheckStamp(input, &rgbd.frame.stamp_s)) return false;
-      return rgbd_queue_.Push(std::move(rgbd));
+      if (!CheckStamp(input, &rgbd.frame.stamp_s, &rgbd)) return false;
+      return Enqueue(input, std::move(rgbd));
     }
     case kNumInputChannels:
       break;
@@ -176,6 +210,7 @@ std::vector<HealthReport::Channel> Intake::ChannelHealth() const {
     row.received = counters_[i].received.load();
     row.dropped = counters_[i].dropped.load();
     row.malformed = counters_[i].malformed.load();
+    row.skipped = counters_[i].skipped.load();
     row.queue_depth = i == kRgbdChannel ? static_cast<int>(rgbd_queue_.size()) : sensor_depth;
     rows.push_back(row);
   }

@@ -1,6 +1,9 @@
 #include "fusemap/io/carmen_line_parser.h"
 
+#include <sys/stat.h>
 #include <zlib.h>
+
+#include <cerrno>
 
 #include <algorithm>
 #include <cmath>
@@ -63,8 +66,31 @@ CarmenLineReader::~CarmenLineReader() { Close(); }
 
 bool CarmenLineReader::Open(const std::string& path) {
   Close();
+  failure_.clear();
+  struct stat info;
+  if (::stat(path.c_str(), &info) != 0) {
+    failure_ = std::strerror(errno);
+    return false;
+  }
+  if (S_ISDIR(info.st_mode)) {
+    failure_ = "is a directory, not a log file";
+    return false;
+  }
   file_ = gzopen(path.c_str(), "rb");
+  if (file_ == nullptr) failure_ = std::strerror(errno);
   return file_ != nullptr;
+}
+
+void CarmenLineReader::NoteFailure() {
+  int code = Z_OK;
+  const char* message = gzerror(file_, &code);
+  if (code == Z_ERRNO) {
+    failure_ = std::string("read failed: ") + std::strerror(errno);
+  } else if (code != Z_OK) {
+    // Z_BUF_ERROR at the end: the gzip stream stops mid-way (truncated download).
+    failure_ = std::string(code == Z_BUF_ERROR ? "truncated gzip data: " : "corrupt gzip data: ") +
+               (message != nullptr ? message : "?");
+  }
 }
 
 void CarmenLineReader::Close() {
@@ -72,7 +98,12 @@ void CarmenLineReader::Close() {
   file_ = nullptr;
 }
 
-bool CarmenLineReader::Rewind() { return gzrewind(file_) == 0; }
+bool CarmenLineReader::Rewind() {
+  if (gzrewind(file_) == 0) return true;
+  if (failure_.empty()) NoteFailure();
+  if (failure_.empty()) failure_ = "cannot rewind (not a seekable file)";
+  return false;
+}
 
 bool CarmenLineReader::ReadLine(std::string* line, bool* complete) {
   line->clear();
@@ -85,6 +116,7 @@ bool CarmenLineReader::ReadLine(std::string* line, bool* complete) {
     }
   }
   *complete = false;
+  if (line->empty()) NoteFailure();
   return !line->empty();
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <deque>
@@ -166,6 +167,28 @@ CarmenOptions ParseCarmenOptions(common::ConfigReader& reader) {
   return options;
 }
 
+namespace {
+
+// Printable ASCII as is; anything else (and the separators ',' ':' '\\') as \xHH; long tokens
+// cut to 32 bytes.
+std::string EscapedToken(const std::string& token) {
+  std::string out;
+  for (size_t i = 0; i < token.size() && i < 32; ++i) {
+    const unsigned char c = static_cast<unsigned char>(token[i]);
+    if (c > 0x20 && c < 0x7f && c != ',' && c != ':' && c != '\\') {
+      out += static_cast<char>(c);
+    } else {
+      char hex[5];
+      std::snprintf(hex, sizeof(hex), "\\x%02x", c);
+      out += hex;
+    }
+  }
+  if (token.size() > 32) out += "...";
+  return out;
+}
+
+}  // namespace
+
 std::string CarmenSummary::ToString() const {
   std::ostringstream s;
   s << "scans=" << lasers << " odometry=" << odometry;
@@ -182,7 +205,8 @@ std::string CarmenSummary::ToString() const {
     << " lines=" << lines << " types=";
   bool first = true;
   for (const auto& [type, count] : lines_by_type) {
-    s << (first ? "" : ",") << type << ":" << count;
+    // The first token of a line of a binary file: shown, not printed raw.
+    s << (first ? "" : ",") << EscapedToken(type) << ":" << count;
     first = false;
   }
   return s.str();
@@ -202,7 +226,7 @@ bool CarmenReader::Open(const std::string& path, std::string* error) {
   impl_->path = path;
   summary_ = CarmenSummary();
   if (!impl_->reader.Open(path)) {
-    *error = path + ": cannot open";
+    *error = path + ": cannot open: " + impl_->reader.failure();
     return false;
   }
   // Pre-pass: time field statistics and the FLASER range histogram. Malformed lines are
@@ -285,8 +309,8 @@ bool CarmenReader::Open(const std::string& path, std::string* error) {
     summary_.range_max_source = param_range_max_m > 0.0 ? "param" : "no_flaser";
   }
 
-  if (!impl_->reader.Rewind()) {
-    *error = path + ": cannot rewind";
+  if (!impl_->reader.failure().empty() || !impl_->reader.Rewind()) {
+    *error = path + ": " + impl_->reader.failure();
     return false;
   }
   return true;
@@ -306,6 +330,10 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
            im.pending.back().printed_s == im.pending.front().printed_s))) {
     if (!im.reader.ReadLine(&im.line, &complete)) {
       im.at_eof = true;
+      if (!im.reader.failure().empty()) {
+        *error = im.path + ":" + std::to_string(im.line_no + 1) + ": " + im.reader.failure();
+        return false;
+      }
       break;
     }
     ++im.line_no;

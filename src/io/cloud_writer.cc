@@ -5,15 +5,18 @@
 #include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
+#include <pcl/conversions.h>
 
 #include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <cstdint>
 #include <fstream>
+#include <sstream>
 #include <unordered_map>
 
 #include "fusemap/io/ply_header.h"
+#include "fusemap/io/write_all.h"
 
 namespace fusemap {
 namespace io {
@@ -24,46 +27,62 @@ bool Fail(std::string* error, const std::string& message) {
   return false;
 }
 
-// PCL reports an unopenable file on its console (or by throwing); probing first gives the
-// caller a message with the path and the reason.
-bool CanWrite(const std::string& path, std::string* error) {
-  std::ofstream probe(path, std::ios::binary | std::ios::trunc);
-  if (!probe) return Fail(error, "cannot open " + path + " for writing: " + std::strerror(errno));
-  return true;
-}
-
 bool CanRead(const std::string& path, std::string* error) {
   std::ifstream probe(path, std::ios::binary);
   if (!probe) return Fail(error, "cannot open " + path + ": " + std::strerror(errno));
   return true;
 }
 
+// PCL refuses to write a cloud without points, yet "nothing removed" or "nothing mapped" is a
+// result: such files get the header PCL would write, with zero points.
+std::string EmptyCloudHeader(const cloud::ColorCloud& cloud, bool ply) {
+  pcl::PCLPointCloud2 fields;
+  pcl::toPCLPointCloud2(cloud, fields);
+  const Eigen::Vector4f origin = Eigen::Vector4f::Zero();
+  const Eigen::Quaternionf orientation = Eigen::Quaternionf::Identity();
+  if (ply) {
+    return pcl::PLYWriter().generateHeaderBinary(fields, origin, orientation, 0,
+                                                 /*use_camera=*/false);
+  }
+  return pcl::PCDWriter().generateHeaderBinary(fields, origin, orientation) + "DATA binary\n";
+}
+
 }  // namespace
 
 bool WriteCloudPly(const std::string& path, const cloud::ColorCloud& cloud, std::string* error) {
-  if (!CanWrite(path, error)) return false;
-  try {
-    pcl::PLYWriter writer;
-    // use_camera = false: no PCL-specific camera element, so any PLY reader accepts the file.
-    if (writer.write(path, cloud, /*binary=*/true, /*use_camera=*/false) != 0) {
-      return Fail(error, "failed to write PLY " + path);
-    }
-  } catch (const pcl::PCLException& e) {
-    return Fail(error, "failed to write PLY " + path + ": " + e.what());
-  }
-  return true;
+  if (cloud.empty()) return WriteFileAtomically(path, EmptyCloudHeader(cloud, true), error);
+  return WriteFileAtomically(
+      path,
+      [&](const std::string& tmp, std::string* write_error) {
+        try {
+          pcl::PLYWriter writer;
+          // use_camera = false: no PCL-specific camera element, so any PLY reader accepts it.
+          if (writer.write(tmp, cloud, /*binary=*/true, /*use_camera=*/false) != 0) {
+            return Fail(write_error, "failed to write PLY " + path);
+          }
+        } catch (const pcl::PCLException& e) {
+          return Fail(write_error, "failed to write PLY " + path + ": " + e.what());
+        }
+        return true;
+      },
+      error);
 }
 
 bool WriteCloudPcd(const std::string& path, const cloud::ColorCloud& cloud, std::string* error) {
-  if (!CanWrite(path, error)) return false;
-  try {
-    if (pcl::io::savePCDFileBinary(path, cloud) != 0) {
-      return Fail(error, "failed to write PCD " + path);
-    }
-  } catch (const pcl::PCLException& e) {
-    return Fail(error, "failed to write PCD " + path + ": " + e.what());
-  }
-  return true;
+  if (cloud.empty()) return WriteFileAtomically(path, EmptyCloudHeader(cloud, false), error);
+  return WriteFileAtomically(
+      path,
+      [&](const std::string& tmp, std::string* write_error) {
+        try {
+          if (pcl::io::savePCDFileBinary(tmp, cloud) != 0) {
+            return Fail(write_error, "failed to write PCD " + path);
+          }
+        } catch (const pcl::PCLException& e) {
+          return Fail(write_error, "failed to write PCD " + path + ": " + e.what());
+        }
+        return true;
+      },
+      error);
 }
 
 bool ReadCloudPly(const std::string& path, cloud::ColorCloud* cloud, std::string* error) {
@@ -94,18 +113,21 @@ bool WriteOctoMaps(const cloud::ColorCloud& cloud_map, double resolution_m,
                    const std::string& bt_path, const std::string& ot_path, std::string* error) {
   if (!(resolution_m > 0.0)) return Fail(error, "octomap resolution must be > 0");
   if (!bt_path.empty()) {
-    if (!CanWrite(bt_path, error)) return false;
     octomap::OcTree tree(resolution_m);
     for (const cloud::ColorPoint& p : cloud_map) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
       tree.updateNode(octomap::point3d(p.x, p.y, p.z), /*occupied=*/true, /*lazy_eval=*/true);
     }
-    tree.updateInnerOccupancy();
-    tree.prune();
-    if (!tree.writeBinary(bt_path)) return Fail(error, "failed to write OctoMap " + bt_path);
+    // ColorOcTree (and OcTree) dereference the root here: an empty cloud has none.
+    if (tree.getRoot() != nullptr) {
+      tree.updateInnerOccupancy();
+      tree.prune();
+    }
+    std::ostringstream bytes;
+    if (!tree.writeBinary(bytes)) return Fail(error, "failed to encode OctoMap " + bt_path);
+    if (!WriteFileAtomically(bt_path, bytes.str(), error)) return false;
   }
   if (!ot_path.empty()) {
-    if (!CanWrite(ot_path, error)) return false;
     octomap::ColorOcTree tree(resolution_m);
     // The true mean colour per voxel (ColorOcTree::averageNodeColor halves the weight of all
     // earlier points at each call, so the last points would dominate).
@@ -130,9 +152,13 @@ bool WriteOctoMaps(const cloud::ColorCloud& cloud_map, double resolution_m,
                         static_cast<uint8_t>((sum.b + sum.n / 2) / sum.n));
     }
     // Also sets inner nodes' colours to their children's average.
-    tree.updateInnerOccupancy();
-    tree.prune();
-    if (!tree.write(ot_path)) return Fail(error, "failed to write OctoMap " + ot_path);
+    if (tree.getRoot() != nullptr) {
+      tree.updateInnerOccupancy();
+      tree.prune();
+    }
+    std::ostringstream bytes;
+    if (!tree.write(bytes)) return Fail(error, "failed to encode OctoMap " + ot_path);
+    if (!WriteFileAtomically(ot_path, bytes.str(), error)) return false;
   }
   return true;
 }

@@ -1,6 +1,7 @@
 #include "fusemap/io/lcm_conversions.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "fusemap_lcm/imu_t.hpp"
@@ -102,6 +103,8 @@ bool AllFinite(const double* v, int n) {
   return true;
 }
 
+bool WithinBound(double value, double bound) { return std::abs(value) <= bound; }
+
 bool CheckLaserScanLayout(const void* data, int size, std::string* error) {
   WireCursor cursor(data, size);
   int64_t word = 0;
@@ -182,9 +185,16 @@ bool DecodeLaserScan(const void* data, int size, const LidarChannelConfig& cfg,
   if (!std::isfinite(scan.angle_min_rad) || !std::isfinite(scan.angle_increment_rad)) {
     return WireCursor::Fail("non-finite scan angles", error);
   }
+  if (!WithinBound(scan.angle_min_rad, kMaxAbsAngleRad) ||
+      !WithinBound(scan.angle_increment_rad, kMaxAbsAngleRad)) {
+    return WireCursor::Fail("absurd scan angles", error);
+  }
   if (!(std::isfinite(scan.range_min_m) && std::isfinite(scan.range_max_m) &&
         scan.range_min_m >= 0.f && scan.range_min_m < scan.range_max_m)) {
     return WireCursor::Fail("range limits must satisfy 0 <= range_min < range_max", error);
+  }
+  if (scan.range_max_m > kMaxLaserRangeM) {
+    return WireCursor::Fail("absurd range_max " + std::to_string(scan.range_max_m) + " m", error);
   }
   if (!scan.intensities.empty() && scan.intensities.size() != scan.ranges_m.size()) {
     return WireCursor::Fail("intensity count " + std::to_string(scan.intensities.size()) +
@@ -225,6 +235,15 @@ bool DecodeOdometry(const void* data, int size, sensor::OdometryData* out, std::
   if (!DecodeFixed(data, size, &msg, error)) return false;
   const double values[] = {msg.x, msg.y, msg.theta, msg.linear_velocity, msg.angular_velocity};
   if (!AllFinite(values, 5)) return WireCursor::Fail("non-finite odometry field", error);
+  if (!WithinBound(msg.x, kMaxAbsPositionM) || !WithinBound(msg.y, kMaxAbsPositionM) ||
+      !WithinBound(msg.theta, kMaxAbsAngleRad) ||
+      !WithinBound(msg.linear_velocity, kMaxAbsSpeedMps) ||
+      !WithinBound(msg.angular_velocity, kMaxAbsAngularSpeedRadps)) {
+    char reason[200];
+    std::snprintf(reason, sizeof(reason), "absurd odometry x=%g y=%g theta=%g v=%g w=%g", msg.x,
+                  msg.y, msg.theta, msg.linear_velocity, msg.angular_velocity);
+    return WireCursor::Fail(reason, error);
+  }
   out->stamp_s = UtimeToStamp(msg.utime);
   out->pose = common::Rigid2d(msg.x, msg.y, msg.theta);
   if (linear_velocity_mps != nullptr) *linear_velocity_mps = msg.linear_velocity;
@@ -250,6 +269,12 @@ bool DecodeImu(const void* data, int size, sensor::ImuData* out, std::string* er
   if (!AllFinite(msg.linear_acceleration, 3) || !AllFinite(msg.angular_velocity, 3) ||
       (msg.has_orientation && !AllFinite(msg.orientation, 4))) {
     return WireCursor::Fail("non-finite imu field", error);
+  }
+  for (int i = 0; i < 3; ++i) {
+    if (!WithinBound(msg.linear_acceleration[i], kMaxAbsAccelerationMps2) ||
+        !WithinBound(msg.angular_velocity[i], kMaxAbsAngularSpeedRadps)) {
+      return WireCursor::Fail("absurd imu acceleration or angular velocity", error);
+    }
   }
   out->stamp_s = UtimeToStamp(msg.utime);
   out->linear_acceleration_mps2 = Eigen::Map<const Eigen::Vector3d>(msg.linear_acceleration);

@@ -1,5 +1,6 @@
 #include "fusemap/io/map_writer.h"
 #include "fusemap/io/image_file.h"
+#include "fusemap/io/write_all.h"
 
 #include <cstdio>
 #include <opencv2/core.hpp>
@@ -52,21 +53,12 @@ bool WriteMapPgmYaml(const MapImage& map, const std::string& path_prefix, std::s
   const std::string pgm_path = path_prefix + ".pgm";
   const std::string yaml_path = path_prefix + ".yaml";
   if (!WriteImageFile(WrapPixels(map), pgm_path, error, {cv::IMWRITE_PXM_BINARY, 1})) return false;
-  std::FILE* file = std::fopen(yaml_path.c_str(), "w");
-  if (file == nullptr) {
-    *error = yaml_path + ": cannot open for writing";
-    return false;
-  }
-  std::fprintf(file,
-               "image: %s\nresolution: %.9g\norigin: [%.9g, %.9g, 0.0]\nnegate: 0\n"
-               "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n",
-               BaseName(pgm_path).c_str(), map.resolution_m, map.origin_m.x(), map.origin_m.y());
-  const bool ok = std::fflush(file) == 0 && !std::ferror(file);
-  if (std::fclose(file) != 0 || !ok) {
-    *error = yaml_path + ": write failed";
-    return false;
-  }
-  return true;
+  char yaml[512];
+  std::snprintf(yaml, sizeof(yaml),
+                "image: %s\nresolution: %.9g\norigin: [%.9g, %.9g, 0.0]\nnegate: 0\n"
+                "occupied_thresh: 0.65\nfree_thresh: 0.196\nmode: trinary\n",
+                BaseName(pgm_path).c_str(), map.resolution_m, map.origin_m.x(), map.origin_m.y());
+  return WriteFileAtomically(yaml_path, yaml, error);
 }
 
 bool WriteMapPng(const MapImage& map, const std::vector<Eigen::Vector2d>& trajectory_xy,

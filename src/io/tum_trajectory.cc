@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "fusemap/io/numeric_line_reader.h"
+#include "fusemap/io/write_all.h"
 
 namespace fusemap {
 namespace io {
@@ -40,24 +41,16 @@ bool ReadTumTrajectoryFile(const std::string& path, eval::Trajectory* trajectory
 
 bool WriteTumTrajectoryFile(const std::string& path, const eval::Trajectory& trajectory,
                             std::string* error) {
-  std::FILE* file = std::fopen(path.c_str(), "w");
-  if (file == nullptr) {
-    *error = path + ": cannot open for writing";
-    return false;
-  }
-  std::fprintf(file, "# timestamp tx ty tz qx qy qz qw\n");
+  std::string text = "# timestamp tx ty tz qx qy qz qw\n";
+  char line[256];
   for (const eval::TimedPose3d& p : trajectory) {
     const Eigen::Vector3d& t = p.pose.translation();
     const Eigen::Quaterniond& q = p.pose.rotation();
-    std::fprintf(file, "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.stamp_s, t.x(), t.y(), t.z(),
-                 q.x(), q.y(), q.z(), q.w());
+    std::snprintf(line, sizeof(line), "%.6f %.9f %.9f %.9f %.9f %.9f %.9f %.9f\n", p.stamp_s,
+                  t.x(), t.y(), t.z(), q.x(), q.y(), q.z(), q.w());
+    text += line;
   }
-  const bool ok = std::fflush(file) == 0 && !std::ferror(file);
-  if (std::fclose(file) != 0 || !ok) {
-    *error = path + ": write failed";
-    return false;
-  }
-  return true;
+  return WriteFileAtomically(path, text, error);
 }
 
 }  // namespace io

@@ -157,16 +157,111 @@ TEST_F(IntakeTest, LaserJumpBackIsATimeResetAndLaterStampsAreRebased) {
   EXPECT_EQ(intake->counters(kOdometryChannel).malformed, 1);
 }
 
-TEST_F(IntakeTest, SeededStampsRejectOlderInputAndTimeResetCanBeDisabled) {
+// Issue 18 item 10: after --resume a replay from the log's start is skipped up to the
+// checkpoint (counted as skipped), not mapped again through a time reset.
+TEST_F(IntakeTest, ResumePointSkipsWhatTheCheckpointHolds) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  const double t0 = kNowS - 1000.0;
+  intake->SetResumePoint(kLidarChannel, t0 + 300.0);
+  intake->SetResumePoint(kOdometryChannel, t0 + 300.01);
+  for (int i = 0; i <= 3000; ++i) {
+    Send(*intake, "ODOMETRY", io::EncodeOdometry({t0 + 0.1 * i + 0.01, common::Rigid2d()}));
+    Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 0.1 * i)));
+  }
+  EXPECT_EQ(intake->time_resets(), 0);
+  EXPECT_EQ(intake->counters(kLidarChannel).skipped, 3001);
+  EXPECT_EQ(intake->counters(kOdometryChannel).skipped, 3001);
+  EXPECT_EQ(intake->counters(kLidarChannel).malformed, 0);
+  EXPECT_EQ(intake->sensor_queue().size(), 0u);
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 300.1))));
+  EXPECT_TRUE(Send(*intake, "ODOMETRY", io::EncodeOdometry({t0 + 300.11, common::Rigid2d()})));
+  // Past the checkpoint, a loop of the log is a time reset again.
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0))));
+  EXPECT_EQ(intake->time_resets(), 1);
+  HealthReport report;
+  report.channels = intake->ChannelHealth();
+  EXPECT_NE(FormatHealth(report).find("resume_skipped=6002"), std::string::npos);
+}
+
+TEST_F(IntakeTest, TimeResetCanBeDisabled) {
   DaemonOptions options;
   options.time_reset_threshold_s = 0.0;
   Intake intake(io::SlamConfig(), options, OverflowPolicy::kDropOldest, &log_,
                 [] { return kNowS; });
-  intake.SeedStamps(kNowS - 10.0);
-  EXPECT_FALSE(Send(intake, "ODOMETRY", io::EncodeOdometry({kNowS - 11.0, common::Rigid2d()})));
-  EXPECT_FALSE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 60.0))));
   EXPECT_TRUE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 9.0))));
+  EXPECT_FALSE(Send(intake, "LIDAR", io::EncodeLaserScan(Scan(kNowS - 60.0))));
   EXPECT_EQ(intake.time_resets(), 0);
+  EXPECT_EQ(intake.counters(kLidarChannel).malformed, 1);
+}
+
+// Issue 18 item 6: one odometry stamp 11.6 days ahead (still before the wall clock) made the
+// 990 valid messages after it "go backwards". Now it costs itself only, and the counters blame
+// it alone; IMU the same.
+TEST_F(IntakeTest, OneStampFarAheadCostsOnlyThatMessage) {
+  DaemonOptions options;
+  options.sensor_queue_size = 10000;
+  Intake intake(io::SlamConfig(), options, OverflowPolicy::kBlock, &log_,
+                [] { return kNowS + 30 * 86400.0; });
+  const double t0 = kNowS - 100.0;
+  for (int i = 0; i < 1000; ++i) {
+    const double ahead_s = i == 10 ? 11.6 * 86400.0 : 0.0;
+    Send(intake, "ODOMETRY", io::EncodeOdometry({t0 + 0.02 * i + ahead_s, common::Rigid2d()}));
+    sensor::ImuData imu;
+    for (int k = 0; k < 4; ++k) {
+      imu.stamp_s = t0 + 0.02 * i + 0.005 * k + (i == 20 && k == 1 ? 11.6 * 86400.0 : 0.0);
+      Send(intake, "IMU", io::EncodeImu(imu));
+    }
+  }
+  EXPECT_EQ(intake.counters(kOdometryChannel).malformed, 1);
+  EXPECT_EQ(intake.counters(kImuChannel).malformed, 1);
+  EXPECT_EQ(intake.sensor_queue().size(), 999u + 3999u);
+  int odometry = 0;
+  double last_s = 0.0;
+  while (intake.sensor_queue().size() > 0) {
+    auto m = intake.sensor_queue().Pop();
+    if (m->channel != kOdometryChannel) continue;
+    const double stamp_s = std::get<sensor::OdometryData>(m->data).stamp_s;
+    EXPECT_LT(stamp_s, t0 + 21.0);
+    EXPECT_GT(stamp_s, last_s);
+    last_s = stamp_s;
+    ++odometry;
+  }
+  EXPECT_EQ(odometry, 999);
+  bool blamed = false;
+  for (const auto& line : lines_) blamed |= line.find("outlier") != std::string::npos;
+  EXPECT_TRUE(blamed);
+}
+
+// Issue 18 item 7: utime -2^62 on the laser was taken as a time reset and shifted the rest of
+// the run by 4.6e12 s.
+TEST_F(IntakeTest, AbsurdLaserStampIsMalformedNotATimeReset) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  const double t0 = kNowS - 100.0;
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0))));
+  EXPECT_FALSE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(-4611686018427.387904))));
+  EXPECT_EQ(intake->time_resets(), 0);
+  EXPECT_EQ(intake->counters(kLidarChannel).malformed, 1);
+  EXPECT_TRUE(Send(*intake, "LIDAR", io::EncodeLaserScan(Scan(t0 + 0.1))));
+  intake->sensor_queue().Pop();
+  EXPECT_NEAR(std::get<sensor::LaserScan>(intake->sensor_queue().Pop()->data).stamp_s, t0 + 0.1,
+              1e-6);
+}
+
+// Issue 18 item 8: odometry x = 1e300 was accepted and reached trajectory.tum.
+TEST_F(IntakeTest, AbsurdOdometryAndImuValuesAreMalformed) {
+  auto intake = Make(OverflowPolicy::kDropOldest);
+  EXPECT_FALSE(Send(*intake, "ODOMETRY",
+                    io::EncodeOdometry({kNowS - 2.0, common::Rigid2d(1e300, 0.0, 0.0)})));
+  EXPECT_FALSE(Send(*intake, "ODOMETRY",
+                    io::EncodeOdometry({kNowS - 2.0, common::Rigid2d(0.0, -2e7, 0.0)})));
+  sensor::ImuData imu;
+  imu.stamp_s = kNowS - 2.0;
+  imu.angular_velocity_radps.z() = 1e200;
+  EXPECT_FALSE(Send(*intake, "IMU", io::EncodeImu(imu)));
+  EXPECT_EQ(intake->counters(kOdometryChannel).malformed, 2);
+  EXPECT_EQ(intake->counters(kImuChannel).malformed, 1);
+  EXPECT_TRUE(Send(*intake, "ODOMETRY",
+                   io::EncodeOdometry({kNowS - 2.0, common::Rigid2d(1e4, -1e4, 100.0)})));
 }
 
 sensor::RgbdFrame SmallFrame(double stamp_s) {

@@ -77,18 +77,21 @@ double Distance(const common::Rigid2d& a, const common::Rigid2d& b) {
          std::abs(common::NormalizeAngle(a.angle_rad() - b.angle_rad()));
 }
 
-TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
+// Resumes at the middle of the log; with replay_from_start the resumed engine is fed the whole
+// log again (a file:// replay restarted), of which it must skip what the checkpoint holds.
+void CheckResumedRunEqualsUninterruptedRun(bool replay_from_start) {
   const auto log = MakeLog();
   const io::SlamConfig config = test_world::RoomSlamConfig();
   RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
-  NullPublisher publisher;
+  test_world::NullPublisher publisher;
 
   Engine whole(config, DaemonOptions(), 1, OverflowPolicy::kBlock, &publisher, &quiet);
   whole.Start();
   Feed(&whole, log, 0, log.size());
   whole.Finish();
 
-  const std::string dir = ::testing::TempDir() + "/resume_test";
+  const std::string dir =
+      ::testing::TempDir() + (replay_from_start ? "/resume_test_replay" : "/resume_test");
   std::filesystem::remove_all(dir);
   const size_t cut = log.size() / 2;
   {
@@ -117,7 +120,22 @@ TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
   Engine resumed(config, DaemonOptions(), 1, OverflowPolicy::kBlock, &publisher, &quiet);
   resumed.Restore(checkpoint.contents.state, checkpoint.contents.odometry);
   resumed.Start();
-  Feed(&resumed, log, cut, log.size());
+  if (replay_from_start) {
+    int skipped = 0;
+    for (size_t i = 0; i < log.size(); ++i) {
+      const bool queued = resumed.intake().OnMessage(log[i].channel, log[i].data.data(),
+                                                     static_cast<int>(log[i].data.size()));
+      skipped += !queued;
+      if (i >= cut) {
+        ASSERT_TRUE(queued) << i;
+      }
+    }
+    EXPECT_EQ(skipped, static_cast<int>(cut));
+    EXPECT_EQ(resumed.Health().time_resets, 0);
+    for (const auto& channel : resumed.Health().channels) EXPECT_EQ(channel.malformed, 0);
+  } else {
+    Feed(&resumed, log, cut, log.size());
+  }
   resumed.Finish();
 
   // The graph: every node of the whole run, where the uninterrupted run put it.
@@ -151,6 +169,16 @@ TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
     ++i;
   }
   EXPECT_LT(max_error, 1e-6);
+}
+
+TEST(ResumeTest, ResumedRunEqualsUninterruptedRunAndCoversItAll) {
+  CheckResumedRunEqualsUninterruptedRun(false);
+}
+
+// Issue 18 item 10: --resume on a file:// replay mapped the log again from its start through a
+// time reset (20 kill/resume cycles: 4,543 nodes and a 610 s trajectory instead of 942 / 300 s).
+TEST(ResumeTest, ReplayFromTheStartSkipsWhatTheCheckpointHolds) {
+  CheckResumedRunEqualsUninterruptedRun(true);
 }
 
 TEST(ResumeTest, CorruptCheckpointFallsBackToPreviousAndOtherVersionIsRefused) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -168,6 +169,41 @@ TEST(CarmenReaderTest, ReadsGzipTransparently) {
   ASSERT_TRUE(error.empty()) << error;
   ASSERT_EQ(records.size(), 5u);
   EXPECT_EQ(records[1].scan.ranges_m, std::vector<float>({1.5f, 2.5f, 81.83f, 3.5f}));
+  std::remove(path.c_str());
+}
+
+// Issue 18 item 13: a directory or a corrupt gzip was reported only as "cannot rewind", and a
+// binary file's first "tokens" went raw into the summary's types=.
+TEST(CarmenReaderTest, SaysWhyAFileCannotBeRead) {
+  CarmenReader reader{CarmenOptions()};
+  std::string error;
+  EXPECT_FALSE(reader.Open(testing::TempDir(), &error));
+  EXPECT_NE(error.find("is a directory"), std::string::npos) << error;
+  EXPECT_FALSE(reader.Open(TempPath("missing.log"), &error));
+  EXPECT_NE(error.find("No such file or directory"), std::string::npos) << error;
+
+  const std::string gz_path = TempPath("cut.log.gz");
+  gzFile gz = gzopen(gz_path.c_str(), "wb");
+  ASSERT_NE(gz, nullptr);
+  for (int i = 0; i < 200; ++i) ASSERT_GT(gzputs(gz, kGoodLog), 0);
+  gzclose(gz);
+  std::filesystem::resize_file(gz_path, std::filesystem::file_size(gz_path) / 2);
+  CarmenSummary summary;
+  ReadAll(gz_path, CarmenOptions(), &summary, &error);
+  EXPECT_NE(error.find("gzip data"), std::string::npos) << error;
+  EXPECT_EQ(error.find("rewind"), std::string::npos) << error;
+  std::remove(gz_path.c_str());
+}
+
+TEST(CarmenReaderTest, NonPrintableTypesAreEscaped) {
+  const std::string path = WriteFile("binary.log", std::string("\x01\xff\x7f,:ab\n") + kGoodLog);
+  CarmenSummary summary;
+  std::string error;
+  ReadAll(path, CarmenOptions(), &summary, &error);
+  ASSERT_TRUE(error.empty()) << error;
+  const std::string line = summary.ToString();
+  EXPECT_NE(line.find("types=\\x01\\xff\\x7f\\x2c\\x3aab:1"), std::string::npos) << line;
+  for (char c : line) EXPECT_TRUE(c >= 0x20 && c < 0x7f) << static_cast<int>(c);
   std::remove(path.c_str());
 }
 

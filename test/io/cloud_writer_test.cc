@@ -73,6 +73,25 @@ TEST(CloudWriterTest, EmptyCloudRoundTrips) {
   EXPECT_TRUE(read.empty());
 }
 
+// Issue 18 item 9: with nothing removed as dynamic, cloud_removed.ply failed to write and the
+// run exited 1 without its OctoMap and cloud.png. An empty cloud is a valid empty PLY.
+TEST(CloudWriterTest, EmptyPlyRoundTrips) {
+  std::string error;
+  const std::string path = TempPath("empty.ply");
+  ASSERT_TRUE(WriteCloudPly(path, cloud::ColorCloud(), &error)) << error;
+  cloud::ColorCloud read = SmallCloud();
+  ASSERT_TRUE(ReadCloudPly(path, &read, &error)) << error;
+  EXPECT_TRUE(read.empty());
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  // The OctoMaps of an empty cloud: empty trees (ColorOcTree crashed on its missing root).
+  ASSERT_TRUE(WriteOctoMaps(cloud::ColorCloud(), 0.05, TempPath("empty.bt"), TempPath("empty.ot"),
+                            &error))
+      << error;
+  std::unique_ptr<octomap::AbstractOcTree> tree(octomap::AbstractOcTree::read(TempPath("empty.ot")));
+  ASSERT_NE(tree, nullptr);
+  EXPECT_EQ(tree->size(), 0u);
+}
+
 TEST(CloudWriterTest, OctoMapsHoldOneOccupiedLeafPerVoxel) {
   const double res = 0.1;
   cloud::ColorCloud cloud;

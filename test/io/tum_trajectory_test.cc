@@ -79,7 +79,8 @@ TEST(TumTrajectoryTest, MissingFileAndUnwritablePath) {
   EXPECT_FALSE(ReadTumTrajectoryFile("/nonexistent/x.tum", &trajectory, &error));
   EXPECT_EQ(error, "/nonexistent/x.tum: cannot open for reading");
   EXPECT_FALSE(WriteTumTrajectoryFile("/nonexistent/x.tum", trajectory, &error));
-  EXPECT_EQ(error, "/nonexistent/x.tum: cannot open for writing");
+  EXPECT_EQ(error, "/nonexistent/x.tum: cannot open /nonexistent/x.tum.tmp for writing: No such "
+                   "file or directory");
 }
 
 }  // namespace

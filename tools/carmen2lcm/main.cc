@@ -4,6 +4,7 @@
 // io::CarmenReader and is printed in the summary.
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <string>
 
@@ -24,7 +25,15 @@ constexpr char kUsage[] =
     "  --stamp-map FILE  also write each odometry record's output stamp beside the stamp\n"
     "                 the log printed, so ground truth on the log's clock can be looked up\n"
     "                 in trajectory.tum (fusemap_eval relations --stamp-map)\n"
-    "Scans: beam i at -90 deg + i * 180 deg / (N - N%2), i.e. 180/181 beams at 1 deg.\n";
+    "Scans: beam i at -90 deg + i * 180 deg / (N - N%2), i.e. 180/181 beams at 1 deg.\n"
+    "Exit codes: 0 converted, 1 bad input (no CARMEN records, a malformed line without\n"
+    "--skip-bad, an unreadable file) or a failed write, 2 command-line usage error.\n";
+
+// Usage errors exit 2 (README "Exit codes").
+int UsageError(const std::string& message) {
+  std::cerr << "fusemap_carmen2lcm: " << message << "\n" << kUsage;
+  return 2;
+}
 
 }  // namespace
 
@@ -45,8 +54,7 @@ int main(int argc, char** argv) {
       char* end = nullptr;
       options.range_max_m = std::strtod(argv[++i], &end);
       if (*end != '\0' || !(options.range_max_m > 0.0)) {
-        std::cerr << "--range-max needs a positive number of metres\n";
-        return 1;
+        return UsageError("--range-max needs a positive number of metres");
       }
     } else if (arg == "--laser-channel" && has_value) {
       laser_channel = argv[++i];
@@ -57,13 +65,20 @@ int main(int argc, char** argv) {
     } else if (!arg.empty() && arg[0] != '-' && n_positional < 2) {
       positional[n_positional++] = arg;
     } else {
-      std::cerr << "unexpected argument '" << arg << "'\n" << kUsage;
-      return 1;
+      return UsageError("unexpected argument '" + arg + "'");
     }
   }
-  if (n_positional != 2) {
-    std::cerr << kUsage;
-    return 1;
+  if (n_positional != 2) return UsageError("needs INPUT and OUTPUT.lcm");
+  // Opening the output truncates it: never when it is the input (or the stamp map) under
+  // another name. Compared by file identity, so links and "./X" are caught too.
+  std::error_code ec;
+  for (const std::string& other : {positional[0], stamp_map_path}) {
+    if (!other.empty() && std::filesystem::equivalent(other, positional[1], ec)) {
+      return UsageError("OUTPUT " + positional[1] + " is the same file as " + other);
+    }
+  }
+  if (!stamp_map_path.empty() && std::filesystem::equivalent(positional[0], stamp_map_path, ec)) {
+    return UsageError("--stamp-map " + stamp_map_path + " is the same file as INPUT");
   }
 
   std::string error;
@@ -128,6 +143,14 @@ int main(int argc, char** argv) {
   }
   const fusemap::io::CarmenSummary& s = reader.summary();
   for (const std::string& reason : s.first_skip_reasons) std::cerr << "skipped " << reason << "\n";
+  if (s.lasers == 0 && s.odometry == 0) {
+    std::cerr << positional[0] << ": no CARMEN records found (" << s.lines
+              << " non-empty lines, none FLASER, ROBOTLASER1 or ODOM); is it a CARMEN log?\n"
+              << s.ToString() << "\n";
+    std::remove(positional[1].c_str());
+    if (!stamp_map_path.empty()) std::remove(stamp_map_path.c_str());
+    return 1;
+  }
   std::cout << s.ToString() << " wrote=" << positional[1];
   if (!stamp_map_path.empty()) std::cout << " stamp_map=" << stamp_map_path;
   std::cout << "\n";

@@ -103,9 +103,10 @@ bool GetDouble(const Args& args, const std::string& key, double* value, std::str
   return true;
 }
 
+// Command-line usage errors: exit 2 (bad input files exit 1).
 int Fail(const std::string& error, const char* usage) {
   std::fprintf(stderr, "fusemap_eval: %s\n%s", error.c_str(), usage);
-  return 1;
+  return 2;
 }
 
 int RunRelations(int argc, char** argv) {
@@ -163,12 +164,19 @@ int RunRelations(int argc, char** argv) {
   return 0;
 }
 
-bool ReadPair(const Args& args, eval::Trajectory* gt, eval::Trajectory* est, std::string* error) {
-  std::string gt_path, est_path;
-  return GetRequired(args, "--gt", &gt_path, error) &&
-         GetRequired(args, "--est", &est_path, error) &&
-         io::ReadTumTrajectoryFile(gt_path, gt, error) &&
-         io::ReadTumTrajectoryFile(est_path, est, error);
+// --gt and --est: 2 when missing, 1 when unreadable, 0 when both were read.
+int ReadPair(const Args& args, const char* usage, eval::Trajectory* gt, eval::Trajectory* est) {
+  std::string gt_path, est_path, error;
+  if (!GetRequired(args, "--gt", &gt_path, &error) ||
+      !GetRequired(args, "--est", &est_path, &error)) {
+    return Fail(error, usage);
+  }
+  if (!io::ReadTumTrajectoryFile(gt_path, gt, &error) ||
+      !io::ReadTumTrajectoryFile(est_path, est, &error)) {
+    std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
+    return 1;
+  }
+  return 0;
 }
 
 int RunAte(int argc, char** argv) {
@@ -185,9 +193,10 @@ int RunAte(int argc, char** argv) {
   options.align = args.flags.count("--no-align") == 0;
   eval::Trajectory gt, est;
   if (!GetDouble(args, "--max-time-diff", &options.max_time_diff_s, &error) ||
-      !options.IsValid(&error) || !ReadPair(args, &gt, &est, &error)) {
+      !options.IsValid(&error)) {
     return Fail(error, kAteUsage);
   }
+  if (const int status = ReadPair(args, kAteUsage, &gt, &est); status != 0) return status;
   const eval::AteResult r = eval::ComputeAte(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu associated=%d aligned=%s\n", gt.size(), est.size(),
               r.trans_m.count, options.align ? "yes" : "no");
@@ -228,9 +237,10 @@ int RunRpe(int argc, char** argv) {
   eval::Trajectory gt, est;
   if (!GetDouble(args, "--delta", &options.delta, &error) ||
       !GetDouble(args, "--max-time-diff", &options.max_time_diff_s, &error) ||
-      !options.IsValid(&error) || !ReadPair(args, &gt, &est, &error)) {
+      !options.IsValid(&error)) {
     return Fail(error, kRpeUsage);
   }
+  if (const int status = ReadPair(args, kRpeUsage, &gt, &est); status != 0) return status;
   const eval::RpeResult r = eval::ComputeRpe(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu pairs=%d\n", gt.size(), est.size(), r.trans_m.count);
   if (r.trans_m.count == 0) {
@@ -249,7 +259,7 @@ int RunRpe(int argc, char** argv) {
 int main(int argc, char** argv) {
   if (argc < 2) {
     std::fprintf(stderr, "%s", fusemap::kUsage);
-    return 1;
+    return 2;
   }
   const std::string command = argv[1];
   if (command == "--help" || command == "-h") {
@@ -260,5 +270,5 @@ int main(int argc, char** argv) {
   if (command == "ate") return fusemap::RunAte(argc, argv);
   if (command == "rpe") return fusemap::RunRpe(argc, argv);
   std::fprintf(stderr, "fusemap_eval: unknown command '%s'\n%s", command.c_str(), fusemap::kUsage);
-  return 1;
+  return 2;
 }

@@ -3,12 +3,15 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "cloud_feed.h"
@@ -26,6 +29,7 @@
 #include "fusemap/io/tum_trajectory.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/pose_graph/odometry_calibration.h"
+#include "fusemap/sensor/stamp_filter.h"
 
 namespace fusemap {
 namespace {
@@ -59,7 +63,9 @@ constexpr char kUsage[] =
     "                      falls back to the raw odometry when the fit is not determined\n"
     "  --help              this text\n"
     "\n"
-    "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n";
+    "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n"
+    "Exit codes: 0 outputs written, 1 bad input (unreadable log or relations, no usable scans)\n"
+    "or outputs not written, 2 command-line usage or configuration error.\n";
 
 struct Args {
   std::string log, config, out;
@@ -161,19 +167,19 @@ int Run(const Args& args) {
         !io::MapRelationsThroughStampMapFile(args.relations_stamp_map, &relations,
                                              &stamp_map_summary, &error)))) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
-    return 2;
+    return 1;
   }
   io::LcmLogReader reader;
   if (!reader.Open(args.log, &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
-    return 2;
+    return 1;
   }
   std::error_code ec;
   std::filesystem::create_directories(args.out, ec);
   if (ec) {
     std::fprintf(stderr, "fusemap_offline: cannot create output folder %s: %s\n", args.out.c_str(),
                  ec.message().c_str());
-    return 2;
+    return 1;
   }
 
   std::unique_ptr<common::Executor> executor;
@@ -201,56 +207,95 @@ int Run(const Args& args) {
                    error.c_str());
     }
   };
-  while (reader.Next(&event)) {
-    const int size = static_cast<int>(event.data.size());
-    double stamp_s = 0.0;
-    if (event.channel == config.channels.lidar) {
-      sensor::LaserScan scan;
-      if (!io::DecodeLaserScan(event.data.data(), size, config.lidar, &scan, &error)) {
-        drop_bad_message();
-        continue;
-      }
-      stamp_s = scan.stamp_s;
+  // The daemon's stamp policy (sensor::StampFilter, as in daemon::Intake): absurd or backwards
+  // stamps are dropped, a far jump is held until the channel's next message confirms it, a
+  // plausible backwards jump of the laser is a time reset.
+  using Message =
+      std::variant<sensor::LaserScan, sensor::OdometryData, sensor::ImuData, sensor::RgbdFrame>;
+  enum { kLaser = 0, kOdometry, kImu, kRgbd, kChannels };
+  sensor::StampFilter stamp_filter(sensor::StampFilterOptions(), kChannels, kLaser);
+  std::array<std::optional<Message>, kChannels> held;
+  int bad_stamps = 0;
+  const auto drop_bad_stamp = [&](const std::string& why) {
+    if (bad_stamps++ == 0) {
+      std::fprintf(stderr, "\nfusemap_offline: dropped %s message: %s\n", event.channel.c_str(),
+                   why.c_str());
+    }
+  };
+  const auto apply = [&](Message& message) {
+    if (auto* scan = std::get_if<sensor::LaserScan>(&message)) {
       const auto t0 = std::chrono::steady_clock::now();
-      const auto result = builder.AddScan(scan);
+      const auto result = builder.AddScan(*scan);
       scan_cost_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       ++scans;
-      if (cloud_feed && result) cloud_feed->AddScan(builder, scan.stamp_s, *result);
-    } else if (event.channel == config.channels.odometry) {
-      sensor::OdometryData data;
-      if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) {
-        drop_bad_message();
-        continue;
-      }
-      stamp_s = data.stamp_s;
-      if (!odometry.empty() && data.stamp_s < odometry.back().stamp_s) {
-        ++odometry_out_of_order;
-        continue;
-      }
-      odometry.push_back(data);
-      builder.AddOdometry(data);
-    } else if (event.channel == config.channels.imu) {
-      sensor::ImuData data;
-      if (!io::DecodeImu(event.data.data(), size, &data, &error)) {
-        drop_bad_message();
-        continue;
-      }
-      stamp_s = data.stamp_s;
-      builder.AddImu(data);
-    } else if (cloud_feed && event.channel == config.channels.rgbd) {
-      sensor::RgbdFrame frame;
-      if (!io::DecodeRgbdFrame(event.data.data(), size, &frame, &error)) {
-        drop_bad_message();
-        continue;
-      }
-      stamp_s = frame.stamp_s;
-      cloud_feed->AddFrame(frame);
+      if (cloud_feed && result) cloud_feed->AddScan(builder, scan->stamp_s, *result);
+    } else if (auto* data = std::get_if<sensor::OdometryData>(&message)) {
+      odometry.push_back(*data);
+      builder.AddOdometry(*data);
+    } else if (auto* imu = std::get_if<sensor::ImuData>(&message)) {
+      builder.AddImu(*imu);
+    } else if (auto* frame = std::get_if<sensor::RgbdFrame>(&message)) {
+      cloud_feed->AddFrame(*frame);
       ++rgbd_frames;
+    }
+  };
+  const auto stamp_of = [](Message& message) -> double& {
+    return std::visit([](auto& data) -> double& { return data.stamp_s; }, message);
+  };
+  while (reader.Next(&event)) {
+    const int size = static_cast<int>(event.data.size());
+    Message message;
+    int channel = -1;
+    bool decoded = false;
+    if (event.channel == config.channels.lidar) {
+      channel = kLaser;
+      decoded = io::DecodeLaserScan(event.data.data(), size, config.lidar,
+                                    &message.emplace<sensor::LaserScan>(), &error);
+    } else if (event.channel == config.channels.odometry) {
+      channel = kOdometry;
+      decoded = io::DecodeOdometry(event.data.data(), size,
+                                   &message.emplace<sensor::OdometryData>(), &error);
+    } else if (event.channel == config.channels.imu) {
+      channel = kImu;
+      decoded = io::DecodeImu(event.data.data(), size, &message.emplace<sensor::ImuData>(), &error);
+    } else if (cloud_feed && event.channel == config.channels.rgbd) {
+      channel = kRgbd;
+      decoded = io::DecodeRgbdFrame(event.data.data(), size,
+                                    &message.emplace<sensor::RgbdFrame>(), &error);
     } else {
       ++other_messages;
       continue;
     }
+    if (!decoded) {
+      drop_bad_message();
+      continue;
+    }
+    const sensor::StampFilter::Decision decision = stamp_filter.Check(channel, stamp_of(message));
+    std::optional<Message> suspect = std::move(held[channel]);
+    held[channel].reset();
+    if (decision.held == sensor::StampFilter::Held::kRelease && suspect) {
+      stamp_of(*suspect) = decision.held_stamp_s;
+      apply(*suspect);
+    } else if (decision.held == sensor::StampFilter::Held::kDrop) {
+      drop_bad_stamp(decision.held_reason);
+    }
+    switch (decision.verdict) {
+      case sensor::StampFilter::Verdict::kAccept:
+        stamp_of(message) = decision.stamp_s;
+        apply(message);
+        break;
+      case sensor::StampFilter::Verdict::kHold:
+        held[channel] = std::move(message);
+        continue;
+      case sensor::StampFilter::Verdict::kReject:
+        if (channel == kOdometry) ++odometry_out_of_order;
+        drop_bad_stamp(decision.kind + ": " + decision.reason);
+        continue;
+      case sensor::StampFilter::Verdict::kSkip:
+        continue;
+    }
+    const double stamp_s = decision.stamp_s;
     if (!have_stamp) first_stamp_s = stamp_s;
     have_stamp = true;
     last_stamp_s = std::max(last_stamp_s, stamp_s);
@@ -315,8 +360,12 @@ int Run(const Args& args) {
   const auto global = builder.pose_graph().stats();
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d\n",
-              args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order);
+  // A message still held at the end was a jump nothing confirmed.
+  for (const auto& suspect : held) bad_stamps += suspect.has_value();
+  std::printf("log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d "
+              "bad_stamps=%d time_resets=%lld\n",
+              args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order,
+              bad_stamps, static_cast<long long>(stamp_filter.time_resets()));
   std::printf(
       "local_slam: scans=%d inserted=%d too_few_returns=%d out_of_order=%d "
       "initial_match_rejected=%d absurd_predictions=%d insertions_refused=%d\n",

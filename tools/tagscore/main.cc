@@ -46,6 +46,12 @@ int Fail(const std::string& message) {
   return 1;
 }
 
+// Command-line usage errors exit 2; bad input and failed runs exit 1 (Fail).
+int UsageError(const std::string& message) {
+  std::fprintf(stderr, "fusemap_tagscore: %s\n", message.c_str());
+  return 2;
+}
+
 // Flags `--name value`; positional arguments in order. Returns false on a dangling flag.
 bool ParseArgs(int argc, char** argv, const std::vector<std::string>& switches,
                std::map<std::string, std::string>* flags, std::vector<std::string>* positional,
@@ -90,7 +96,7 @@ bool LoadConfig(const std::string& path, ground_truth::TagGroundTruthOptions* gt
 
 int Detect(const std::map<std::string, std::string>& flags,
            const std::vector<std::string>& images) {
-  if (images.empty()) return Fail("detect: no image given\n" + std::string(kUsage));
+  if (images.empty()) return UsageError("detect: no image given\n" + std::string(kUsage));
   ground_truth::TagDetectorOptions options;
   if (flags.count("--family")) options.family = flags.at("--family");
   if (flags.count("--refine-edges")) options.refine_edges = true;
@@ -118,7 +124,7 @@ int Detect(const std::map<std::string, std::string>& flags,
 
 int GroundTruth(const std::map<std::string, std::string>& flags) {
   for (const char* required : {"--log", "--tags", "--out"}) {
-    if (!flags.count(required)) return Fail(std::string("groundtruth: missing ") + required);
+    if (!flags.count(required)) return UsageError(std::string("groundtruth: missing ") + required);
   }
   const std::string log_path = flags.at("--log");
   const std::string channel = flags.count("--channel") ? flags.at("--channel") : "RGBD";
@@ -194,7 +200,7 @@ int GroundTruth(const std::map<std::string, std::string>& flags) {
 
 int Score(const std::map<std::string, std::string>& flags) {
   for (const char* required : {"--gt", "--est", "--report"}) {
-    if (!flags.count(required)) return Fail(std::string("score: missing ") + required);
+    if (!flags.count(required)) return UsageError(std::string("score: missing ") + required);
   }
   ground_truth::TagGroundTruthOptions unused;
   ground_truth::ScoreOptions options;
@@ -246,14 +252,14 @@ int Score(const std::map<std::string, std::string>& flags) {
 int Main(int argc, char** argv) {
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
     std::fputs(kUsage, argc < 2 ? stderr : stdout);
-    return argc < 2 ? 1 : 0;
+    return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
   std::map<std::string, std::string> flags;
   std::vector<std::string> positional;
   std::string error;
   if (!ParseArgs(argc, argv, {"--help", "--refine-edges"}, &flags, &positional, &error)) {
-    return Fail(error);
+    return UsageError(error);
   }
   if (flags.count("--help")) {
     std::fputs(kUsage, stdout);
@@ -263,10 +269,10 @@ int Main(int argc, char** argv) {
       {"detect", {"--family", "--refine-edges"}},
       {"groundtruth", {"--log", "--tags", "--out", "--config", "--channel", "--sightings"}},
       {"score", {"--gt", "--est", "--report", "--config", "--sightings", "--measures"}}};
-  if (!known.count(command)) return Fail("unknown command '" + command + "'\n" + kUsage);
-  if (!CheckFlags(flags, known.at(command), &error)) return Fail(command + ": " + error);
+  if (!known.count(command)) return UsageError("unknown command '" + command + "'\n" + kUsage);
+  if (!CheckFlags(flags, known.at(command), &error)) return UsageError(command + ": " + error);
   if (command != "detect" && !positional.empty()) {
-    return Fail(command + ": unexpected argument '" + positional[0] + "'");
+    return UsageError(command + ": unexpected argument '" + positional[0] + "'");
   }
   if (command == "detect") return Detect(flags, positional);
   if (command == "groundtruth") return GroundTruth(flags);

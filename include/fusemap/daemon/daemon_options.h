@@ -5,6 +5,7 @@
 
 #include "fusemap/common/config_reader.h"
 #include "fusemap/io/slam_config.h"
+#include "fusemap/sensor/stamp_filter.h"
 
 namespace fusemap {
 namespace daemon {
@@ -37,12 +38,18 @@ struct DaemonOptions {
   // A laser stamp this much before the previous one is a time reset (looping log player,
   // clock set back): a new time base instead of a drop (see Intake). 0 = never.
   double time_reset_threshold_s = 5.0;
+  // A stamp this far ahead of every channel's newest is held until the channel's next message
+  // confirms the jump (else dropped as an outlier); a laser jump back by more than
+  // max_time_reset_s is held the same way instead of being a time reset (see Intake).
+  double max_stamp_jump_s = 60.0;
+  double max_time_reset_s = 30.0 * 86400.0;
   // Seconds between handing freed heap pages back to the system. glibc keeps what trimmed
   // submaps and checkpoint buffers released, spread over its per-thread arenas, so without
   // this the resident size creeps up over hours although the live heap is flat. 0 = never.
   double release_memory_period_s = 10.0;
 
   bool IsValid(std::string* error) const;
+  sensor::StampFilterOptions stamp_filter() const;
 };
 
 // Keys: as the field names.

@@ -17,6 +17,8 @@ struct ChannelCounters {
   std::atomic<int64_t> received{0};
   std::atomic<int64_t> dropped{0};
   std::atomic<int64_t> malformed{0};
+  // Already in the restored checkpoint (--resume): neither mapped again nor malformed.
+  std::atomic<int64_t> skipped{0};
 };
 
 // Scan-to-pose latencies over the most recent `window` scans (milliseconds). Thread-safe.
@@ -55,6 +57,7 @@ struct HealthReport {
     int64_t received = 0;
     int64_t dropped = 0;
     int64_t malformed = 0;
+    int64_t skipped = 0;
     int queue_depth = 0;
   };
   std::vector<Channel> channels;
@@ -74,7 +77,8 @@ struct HealthReport {
   int64_t time_resets = 0;
 };
 
-// One line for logs: "nodes=.. submaps=.. LIDAR=rx/drop/bad ... p50=..ms p99=..ms rss=..MB".
+// One line for logs: "nodes=.. submaps=.. LIDAR=rx/drop/bad ... p50=..ms p99=..ms rss=..MB",
+// with "resume_skipped=N" (all channels) once anything was skipped after --resume.
 std::string FormatHealth(const HealthReport& report);
 
 }  // namespace daemon

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "fusemap/io/slam_config.h"
 #include "fusemap/sensor/rgbd_frame.h"
 #include "fusemap/sensor/sensor_types.h"
+#include "fusemap/sensor/stamp_filter.h"
 
 namespace fusemap {
 namespace daemon {
@@ -41,15 +43,18 @@ struct RgbdMessage {
 };
 
 // The edge between the wire and the SLAM threads: decodes and validates raw LCM messages and
-// enqueues them. Bad messages (decoder rejects, NaN-ridden scans, oversized payloads, stamps too
-// far in the future or going backwards on their channel) are counted per channel, reported
-// through the rate-limited log and dropped.
-// Time resets: a laser stamp more than options.time_reset_threshold_s before the previous one
-// (a looping lcm-logplayer, a robot whose clock was set back) is not dropped but starts a new
-// time base: from then on every channel's stamps are shifted by one offset chosen so that the
-// reset scan lands kTimeResetGapS after the previous scan. The SLAM thus sees one monotonic
-// clock, as if the data had paused for kTimeResetGapS; published stamps are in that clock. OnMessage must be called from one thread at a time
-// (the LCM handler thread); the queues and counters may be read from any thread.
+// enqueues them. Bad messages (decoder rejects, NaN-ridden scans, absurd values, oversized
+// payloads, stamps too far in the future, absurd or going backwards on their channel) are
+// counted per channel as malformed, reported through the rate-limited log and dropped.
+// Stamp order is sensor::StampFilter's (one policy with fusemap_offline): a stamp that jumps far
+// ahead is held (counted as malformed meanwhile) until the channel's next message shows whether
+// it was one outlier (dropped) or a new time base (released, uncounted); a plausible backwards
+// jump of the laser (a looping lcm-logplayer, a clock set back) is a time reset: from then on
+// every channel's stamps are shifted by one offset chosen so that the reset scan lands
+// kTimeResetGapS after the previous scan, and published stamps are in that clock. After
+// --resume, data stamped at or before the checkpoint is skipped and counted as such.
+// OnMessage must be called from one thread at a time (the LCM handler thread); the queues and
+// counters may be read from any thread.
 class Intake {
  public:
   using WallClock = std::function<double()>;  // seconds since the UNIX epoch
@@ -73,13 +78,14 @@ class Intake {
   bool DecodeImages(RgbdMessage* message);
   // Stops intake: queued items can still be popped (drain), new ones are refused.
   void Close();
-  // Before any message: nothing stamped before `stamp_s` is accepted (after --resume, the
-  // restored map's last time), except laser stamps older by more than the time-reset
-  // threshold, which start a new time base after it.
-  void SeedStamps(double stamp_s) { last_stamp_s_.fill(stamp_s); }
-  // Number of time resets so far, and the current offset added to incoming stamps.
+  // Before any message (--resume): data of `channel` stamped at or before `stamp_s` is already
+  // in the restored state and is skipped (counted as skipped) until the channel passes it.
+  void SetResumePoint(InputChannel channel, double stamp_s) {
+    stamp_filter_.SetResumePoint(channel, stamp_s);
+  }
+  // Number of time resets so far.
   int64_t time_resets() const { return time_resets_; }
-  static constexpr double kTimeResetGapS = 1.0;
+  static constexpr double kTimeResetGapS = sensor::StampFilter::kTimeResetGapS;
 
   BoundedQueue<SensorMessage>& sensor_queue() { return sensor_queue_; }
   BoundedQueue<RgbdMessage>& rgbd_queue() { return rgbd_queue_; }
@@ -91,10 +97,13 @@ class Intake {
 
  private:
   bool Reject(InputChannel channel, const std::string& kind, const std::string& why);
-  // Future check of a decoded message's raw stamp, then time-reset detection (laser) and the
-  // backwards check of the re-based stamp, which replaces *stamp_s.
-  bool CheckStamp(InputChannel channel, double* stamp_s);
+  // Future check of a decoded message's raw stamp, then the stamp filter. Returns whether the
+  // message goes on now (with *stamp_s re-based); first releases or drops the channel's held
+  // message as the filter decides. A message the filter holds is moved into held_.
+  template <typename Message>
+  bool CheckStamp(InputChannel channel, double* stamp_s, Message* message);
   bool Enqueue(InputChannel channel, SensorMessage message);
+  bool Enqueue(InputChannel channel, RgbdMessage message);
 
   const io::SlamConfig slam_;
   const DaemonOptions options_;
@@ -102,8 +111,10 @@ class Intake {
   const WallClock wall_clock_s_;
   std::array<std::string, kNumInputChannels> names_;
   std::array<ChannelCounters, kNumInputChannels> counters_;
-  std::array<double, kNumInputChannels> last_stamp_s_;  // re-based; handler thread only
-  double time_offset_s_ = 0.0;                            // handler thread only
+  sensor::StampFilter stamp_filter_;                    // handler thread only
+  // Messages the stamp filter holds as suspect jumps, per channel; handler thread only.
+  std::array<std::optional<SensorMessage>, kNumInputChannels> held_;
+  std::optional<RgbdMessage> held_rgbd_;
   std::atomic<int64_t> time_resets_{0};
   bool decode_rgbd_ = false;
   BoundedQueue<SensorMessage> sensor_queue_;

@@ -22,11 +22,18 @@ class CarmenLineReader {
   bool Open(const std::string& path);
   void Close();
   bool Rewind();
-  // False at end of file. *complete is false for a last line without its newline.
+  // False at end of file or on a read error (then failure() says why). *complete is false for
+  // a last line without its newline.
   bool ReadLine(std::string* line, bool* complete);
+  // Why Open, ReadLine or Rewind failed ("is a directory", "corrupt gzip data: ..."); empty
+  // after a clean end of file.
+  const std::string& failure() const { return failure_; }
 
  private:
+  void NoteFailure();
+
   gzFile_s* file_ = nullptr;
+  std::string failure_;
 };
 
 // Splits in place: separators become '\0' and tokens point into `line`.

@@ -12,6 +12,15 @@ namespace io {
 
 // Scans with more beams than this are rejected as corrupt (no planar lidar comes close).
 constexpr int kMaxLaserBeams = 100000;
+// Finite values beyond these are no measurement but a corrupt field; taken in, they would grow
+// the maps without bound (a scan 1e300 m away). Positions: 1000 km; angles: 1e6 rad (an
+// unwrapped heading of 160,000 turns); speeds: 1 km/s, 1000 rad/s; acceleration: 1000 g.
+constexpr double kMaxAbsPositionM = 1e6;
+constexpr double kMaxAbsAngleRad = 1e6;
+constexpr double kMaxAbsSpeedMps = 1e3;
+constexpr double kMaxAbsAngularSpeedRadps = 1e3;
+constexpr double kMaxAbsAccelerationMps2 = 1e4;
+constexpr float kMaxLaserRangeM = 1e5f;
 
 // What a lidar channel's configuration supplies that fusemap_lcm::planar_lidar_t (libbot2
 // compatible) does not carry. laser_scan_t messages bring their own limits and frame.
@@ -37,7 +46,8 @@ double UtimeToStamp(int64_t utime);
 // apart by the 8-byte fingerprint that starts every LCM message). For planar_lidar_t, the frame
 // and range limits come from `cfg`. Returns false with a reason in *error on truncated data,
 // an unknown fingerprint, trailing bytes, non-finite angles or limits, more than kMaxLaserBeams
-// beams, or an intensity count other than 0 or nranges. `stats` may be null.
+// beams, range_max beyond kMaxLaserRangeM, angles beyond kMaxAbsAngleRad, or an intensity
+// count other than 0 or nranges. `stats` may be null.
 bool DecodeLaserScan(const void* data, int size, const LidarChannelConfig& cfg,
                      sensor::LaserScan* out, std::string* error,
                      LaserDecodeStats* stats = nullptr);
@@ -45,7 +55,8 @@ bool DecodeLaserScan(const void* data, int size, const LidarChannelConfig& cfg,
 std::vector<uint8_t> EncodeLaserScan(const sensor::LaserScan& scan);
 
 // fusemap_lcm::odometry2d_t. Velocities are not part of OdometryData; they are written as
-// given and, when decoding, returned through the optional pointers.
+// given and, when decoding, returned through the optional pointers. Non-finite or absurd
+// values (beyond the kMaxAbs* bounds above) are refused.
 bool DecodeOdometry(const void* data, int size, sensor::OdometryData* out, std::string* error,
                     double* linear_velocity_mps = nullptr,
                     double* angular_velocity_radps = nullptr);
@@ -54,7 +65,8 @@ std::vector<uint8_t> EncodeOdometry(const sensor::OdometryData& odometry,
                                     double angular_velocity_radps = 0.0);
 
 // fusemap_lcm::imu_t. The optional orientation is not part of ImuData: ignored when decoding
-// (but must be finite if has_orientation), written as absent when encoding.
+// (but must be finite if has_orientation), written as absent when encoding. Non-finite or
+// absurd rates and accelerations (beyond the kMaxAbs* bounds above) are refused.
 bool DecodeImu(const void* data, int size, sensor::ImuData* out, std::string* error);
 std::vector<uint8_t> EncodeImu(const sensor::ImuData& imu);
 

@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# Every binary's exit codes as README "Exit codes" lists them: --help 0, a command-line usage
+# error 2, bad input 1; and fusemap_carmen2lcm's refusals (issue 18 items 11 and 13).
+# Usage: exit_codes.sh NAME=PATH...
+set -u
+declare -A bin
+for arg in "$@"; do bin[${arg%%=*}]=${arg#*=}; done
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+
+# expect CODE DESCRIPTION COMMAND...: runs it, stderr to $work/err.
+expect() {
+  local want=$1 what=$2
+  shift 2
+  "$@" >"$work/out" 2>"$work/err"
+  local got=$?
+  if [[ $got -ne $want ]]; then
+    echo "FAIL: $what: exit $got, expected $want ($*)"
+    sed 's/^/    /' "$work/err" | head -5
+    failures=$((failures + 1))
+  fi
+}
+# stderr_has TEXT DESCRIPTION: the last command's stderr contains TEXT.
+stderr_has() {
+  if ! grep -qF -- "$1" "$work/err"; then
+    echo "FAIL: $2: stderr lacks '$1'"
+    sed 's/^/    /' "$work/err" | head -5
+    failures=$((failures + 1))
+  fi
+}
+
+for name in "${!bin[@]}"; do
+  expect 0 "$name --help" "${bin[$name]}" --help
+  expect 2 "$name with an unknown flag" "${bin[$name]}" --no-such-flag-xyz
+done
+for name in fusemap_carmen2lcm fusemap_eval fusemap_tagscore fusemap_offline fusemapd fusemap_sim \
+            fusemap_g2o fusemap_cloudeval; do
+  [[ -n ${bin[$name]:-} ]] && expect 2 "$name without arguments" "${bin[$name]}"
+done
+
+if [[ -n ${bin[fusemap_carmen2lcm]:-} ]]; then
+  c2l=${bin[fusemap_carmen2lcm]}
+  printf 'ODOM 0.0 0.0 0.0 0.0 0.0 0.0 1.0 host 1.0\n' >"$work/log.txt"
+  size=$(stat -c %s "$work/log.txt")
+  expect 2 "carmen2lcm X X" "$c2l" "$work/log.txt" "$work/log.txt"
+  stderr_has "same file" "carmen2lcm X X"
+  ln "$work/log.txt" "$work/hardlink.txt"
+  expect 2 "carmen2lcm X hard-link-of-X" "$c2l" "$work/log.txt" "$work/hardlink.txt"
+  expect 2 "carmen2lcm X ./X" "$c2l" "$work/log.txt" "$work/./log.txt"
+  [[ $(stat -c %s "$work/log.txt") -eq $size ]] || { echo "FAIL: input truncated"; failures=$((failures + 1)); }
+  expect 0 "carmen2lcm on one ODOM line" "$c2l" "$work/log.txt" "$work/out.lcm"
+  head -c 20000 /dev/urandom >"$work/random.bin"
+  expect 1 "carmen2lcm on random bytes" "$c2l" "$work/random.bin" "$work/random.lcm"
+  stderr_has "no CARMEN records found" "carmen2lcm on random bytes"
+  if LC_ALL=C grep -q '[^[:print:][:space:]]' "$work/err"; then
+    echo "FAIL: carmen2lcm printed raw bytes"; failures=$((failures + 1))
+  fi
+  [[ ! -e $work/random.lcm ]] || { echo "FAIL: output left behind"; failures=$((failures + 1)); }
+  expect 1 "carmen2lcm on a directory" "$c2l" "$work" "$work/dir.lcm"
+  stderr_has "is a directory" "carmen2lcm on a directory"
+  gzip -c "$work/log.txt" | head -c 20 >"$work/bad.gz"
+  expect 1 "carmen2lcm on a truncated gzip" "$c2l" "$work/bad.gz" "$work/gz.lcm"
+  stderr_has "gzip" "carmen2lcm on a truncated gzip"
+  expect 1 "carmen2lcm on a missing file" "$c2l" "$work/missing.txt" "$work/m.lcm"
+  stderr_has "No such file" "carmen2lcm on a missing file"
+  expect 2 "carmen2lcm --range-max x" "$c2l" "$work/log.txt" "$work/o.lcm" --range-max x
+fi
+if [[ -n ${bin[fusemap_eval]:-} ]]; then
+  expect 2 "fusemap_eval unknown command" "${bin[fusemap_eval]}" nonsense
+  expect 2 "fusemap_eval ate without --est" "${bin[fusemap_eval]}" ate --gt "$work/x.tum"
+  expect 1 "fusemap_eval ate on missing files" "${bin[fusemap_eval]}" ate --gt "$work/x.tum" \
+    --est "$work/y.tum"
+fi
+if [[ -n ${bin[fusemap_tagscore]:-} ]]; then
+  expect 2 "fusemap_tagscore unknown command" "${bin[fusemap_tagscore]}" nonsense
+  expect 2 "fusemap_tagscore score without --gt" "${bin[fusemap_tagscore]}" score
+  expect 1 "fusemap_tagscore detect on a missing image" "${bin[fusemap_tagscore]}" detect \
+    "$work/missing.png"
+fi
+echo "exit code checks: $failures failure(s)"
+[[ $failures -eq 0 ]]

@@ -1,0 +1,17 @@
+# Exit codes of every binary under tools/ (README "Exit codes"); the ones not built are left out.
+set(tools_exit_code_args)
+foreach(tool fusemap_carmen2lcm fusemap_offline fusemapd fusemap_cloudeval fusemap_bench_cloud
+             fusemap_g2o fusemap_tagscore)
+  if(TARGET ${tool})
+    list(APPEND tools_exit_code_args ${tool}=$<TARGET_FILE:${tool}>)
+  endif()
+endforeach()
+if(TARGET fusemap_eval_tool)
+  list(APPEND tools_exit_code_args fusemap_eval=$<TARGET_FILE:fusemap_eval_tool>)
+endif()
+if(TARGET fusemap_sim_tool)
+  list(APPEND tools_exit_code_args fusemap_sim=$<TARGET_FILE:fusemap_sim_tool>)
+endif()
+add_test(NAME tools_exit_codes
+         COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/exit_codes.sh ${tools_exit_code_args})
+set_tests_properties(tools_exit_codes PROPERTIES TIMEOUT 120)
