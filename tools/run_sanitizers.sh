@@ -7,16 +7,17 @@
 # tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd and fusemap_sim,
 #       simulates 6 s of the hall and replays it through fusemapd --threads 2 from
 #       file://...?speed=0 (outputs in build-tsan/replay).
-# Every report is written to BUILD/sanitizer-logs/ (a report in a child whose exit code a test
-# expects to be nonzero still counts); the run fails if any report was written or any step
-# failed. Exit codes: 0 clean, 1 a step failed or a sanitizer reported, 2 usage error.
+# ASan, LSan and TSan reports are written to BUILD/sanitizer-logs/ (so one in a child whose
+# exit code a test expects to be nonzero still counts), UBSan ones to stderr with exit code 86.
+# The run fails if any report was written or any step failed. Exit codes: 0 clean, 1 a step
+# failed or a sanitizer reported, 2 usage error.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 mode=${1:-asan}
 case "$mode" in
   asan) build_dir=build-asan sanitize=address,undefined ;;
   tsan) build_dir=build-tsan sanitize=thread ;;
-  --help | -h) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help | -h) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "usage: bash tools/run_sanitizers.sh [asan|tsan]" >&2; exit 2 ;;
 esac
 launcher=()
@@ -30,7 +31,9 @@ mkdir -p "$logs"
 cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DFUSEMAP_SANITIZE="$sanitize" \
   -DFUSEMAP_BUILD_TESTS="$([ "$mode" = asan ] && echo ON || echo OFF)" "${launcher[@]}" >/dev/null
 export ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:strict_init_order=1"
-export UBSAN_OPTIONS="log_path=$logs/ubsan:print_stacktrace=1:halt_on_error=1"
+# GCC's UBSan prints to stderr whatever log_path says: it exits with 86 instead, which no test
+# expects, and ctest's log of every test's output is searched for its reports below.
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
 export TSAN_OPTIONS="log_path=$logs/tsan:second_deadlock_stack=1"
 
 status=0
@@ -53,6 +56,10 @@ else
     status=1
 fi
 
+if [ -f "$build_dir/Testing/Temporary/LastTest.log" ]; then
+  grep -B2 -A12 "runtime error:" "$build_dir/Testing/Temporary/LastTest.log" > "$logs/ubsan.ctest" ||
+    rm -f "$logs/ubsan.ctest"
+fi
 reports=$(find "$logs" -type f | sort)
 if [ -n "$reports" ]; then
   echo "== sanitizer reports ($(echo "$reports" | wc -l) files in $logs):"
