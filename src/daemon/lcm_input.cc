@@ -32,12 +32,19 @@ void LcmInput::Subscribe(Intake* intake) {
   for (const std::string& name : intake_->channel_names()) {
     if (name.empty()) continue;
     // LCM treats channel names as regular expressions; anchor-free names match themselves.
-    lcm_->subscribe(name, &LcmInput::OnRaw, this);
+    // A plain function with a context pointer, not subscribe(name, &LcmInput::OnRaw, this):
+    // GCC's -fsanitize=vptr (part of -fsanitize=undefined, GCC 10-12 at least) instruments the
+    // member-function-pointer call in LCM's trampoline, `(subs->handler->*subs->handlerMethod)`
+    // (lcm-cpp-impl.hpp:108), with a wrong address, so every UBSan fusemapd aborted ("invalid
+    // vptr") or segfaulted at its first message (GCC only; the same bug is reported in
+    // dotnet/runtime#73927). LCM calls this plain function without a member pointer.
+    lcm_->subscribeFunction(name, &LcmInput::OnRaw, this);
   }
 }
 
-void LcmInput::OnRaw(const lcm::ReceiveBuffer* buffer, const std::string& channel) {
-  intake_->OnMessage(channel, buffer->data, static_cast<int>(buffer->data_size));
+void LcmInput::OnRaw(const lcm::ReceiveBuffer* buffer, const std::string& channel,
+                     LcmInput* self) {
+  self->intake_->OnMessage(channel, buffer->data, static_cast<int>(buffer->data_size));
 }
 
 LcmInput::End LcmInput::Run(const std::atomic<bool>& stop, int poll_ms) {

@@ -10,7 +10,7 @@
 
 namespace lcm {
 class LCM;
-class ReceiveBuffer;
+struct ReceiveBuffer;
 }  // namespace lcm
 
 namespace fusemap {
@@ -47,7 +47,8 @@ class LcmInput {
   lcm::LCM* publish_handle();
 
  private:
-  void OnRaw(const lcm::ReceiveBuffer* buffer, const std::string& channel);
+  // LCM's callback for every subscribed channel (`self` is the context given to LCM).
+  static void OnRaw(const lcm::ReceiveBuffer* buffer, const std::string& channel, LcmInput* self);
 
   Intake* intake_ = nullptr;
   std::unique_ptr<lcm::LCM> lcm_;

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# Sanitizer runs (not part of .ci/run: a sanitized build and suite take far longer than CI has).
+#   bash tools/run_sanitizers.sh [asan|tsan]        (default: asan)
+# asan: configures build-asan with -DFUSEMAP_SANITIZE=address,undefined (ASan + UBSan, UBSan
+#       aborting at its first report), builds everything, runs the whole ctest suite, then the
+#       demo (tools/demo.sh, outputs in build-asan/demo).
+# tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd and fusemap_sim,
+#       simulates 6 s of the hall and replays it through fusemapd --threads 2 from
+#       file://...?speed=0 (outputs in build-tsan/replay).
+# ASan, LSan and TSan reports are written to BUILD/sanitizer-logs/ (so one in a child whose
+# exit code a test expects to be nonzero still counts), UBSan ones to stderr with exit code 86.
+# The run fails if any report was written or any step failed. Exit codes: 0 clean, 1 a step
+# failed or a sanitizer reported, 2 usage error.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+mode=${1:-asan}
+case "$mode" in
+  asan) build_dir=build-asan sanitize=address,undefined ;;
+  tsan) build_dir=build-tsan sanitize=thread ;;
+  --help | -h) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  *) echo "usage: bash tools/run_sanitizers.sh [asan|tsan]" >&2; exit 2 ;;
+esac
+launcher=()
+if command -v ccache >/dev/null; then launcher=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache); fi
+jobs=$(nproc)
+logs=$PWD/$build_dir/sanitizer-logs
+rm -rf "$logs"
+mkdir -p "$logs"
+# Release flags plus the sanitizers: the same -O3 code the suite normally runs, and the demo
+# (which configures the folder again with Release) does not trigger a rebuild.
+cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DFUSEMAP_SANITIZE="$sanitize" \
+  -DFUSEMAP_BUILD_TESTS="$([ "$mode" = asan ] && echo ON || echo OFF)" "${launcher[@]}" >/dev/null
+export ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:strict_init_order=1"
+# GCC's UBSan prints to stderr whatever log_path says: it exits with 86 instead, which no test
+# expects, and ctest's log of every test's output is searched for its reports below.
+export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
+export TSAN_OPTIONS="log_path=$logs/tsan:second_deadlock_stack=1"
+
+status=0
+if [ "$mode" = asan ]; then
+  cmake --build "$build_dir" -j"$jobs"
+  echo "== ctest (ASan + UBSan)"
+  (cd "$build_dir" && ctest --output-on-failure --no-tests=error -j"$jobs" --timeout 1800) || status=1
+  echo "== demo (ASan + UBSan)"
+  FUSEMAP_BUILD_DIR=$build_dir FUSEMAP_DEMO_OUT=$build_dir/demo bash tools/demo.sh || status=1
+else
+  cmake --build "$build_dir" -j"$jobs" --target fusemapd fusemap_sim_tool
+  out=$build_dir/replay
+  rm -rf "$out"
+  echo "== simulating 6 s (laser, odometry, IMU, RGB-D)"
+  "$build_dir/tools/sim/fusemap_sim" --world data/worlds/hall.yaml --seconds 6 --seed 1 \
+    --out "$out" | tail -1 || status=1
+  echo "== fusemapd --threads 2 over file://$PWD/$out/sim.lcm?speed=0 (TSan)"
+  "$build_dir/tools/fusemapd/fusemapd" --config config/daemon.yaml \
+    --lcm-url "file://$PWD/$out/sim.lcm?speed=0" --out "$out/daemon" --threads 2 --quiet ||
+    status=1
+fi
+
+if [ -f "$build_dir/Testing/Temporary/LastTest.log" ]; then
+  grep -B2 -A12 "runtime error:" "$build_dir/Testing/Temporary/LastTest.log" > "$logs/ubsan.ctest" ||
+    rm -f "$logs/ubsan.ctest"
+fi
+reports=$(find "$logs" -type f | sort)
+if [ -n "$reports" ]; then
+  echo "== sanitizer reports ($(echo "$reports" | wc -l) files in $logs):"
+  for f in $reports; do
+    echo "---- $f"
+    cat "$f"
+  done
+  status=1
+fi
+echo "== $mode: $([ "$status" = 0 ] && echo clean || echo FAILED)"
+exit "$status"
