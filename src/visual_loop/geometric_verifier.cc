@@ -138,6 +138,8 @@ void VerifyEpipolar(const Keyframe& a, const Keyframe& b, const std::vector<cv::
     pa.push_back(a.keypoints[m.queryIdx]);
     pb.push_back(b.keypoints[m.trainIdx]);
   }
+  const bool essential = HasIntrinsics(a) && HasIntrinsics(b);
+  result->method = essential ? VerificationMethod::kEssential : VerificationMethod::kFundamental;
   if (static_cast<int>(matches.size()) < std::max(options.min_inliers, 8)) {
     result->reason = "matches " + std::to_string(matches.size()) + " < " + std::to_string(options.min_inliers);
     return;
@@ -145,8 +147,7 @@ void VerifyEpipolar(const Keyframe& a, const Keyframe& b, const std::vector<cv::
   std::vector<uchar> mask;
   cv::Mat R;
   cv::Mat t;
-  if (HasIntrinsics(a) && HasIntrinsics(b)) {
-    result->method = VerificationMethod::kEssential;
+  if (essential) {
     // Normalised coordinates let the two cameras differ; the threshold scales with the focal.
     std::vector<cv::Point2f> na;
     std::vector<cv::Point2f> nb;
@@ -162,7 +163,6 @@ void VerifyEpipolar(const Keyframe& a, const Keyframe& b, const std::vector<cv::
     }
     cv::recoverPose(E, na, nb, cv::Mat::eye(3, 3, CV_64F), R, t, mask);
   } else {
-    result->method = VerificationMethod::kFundamental;
     const cv::Mat F = cv::findFundamentalMat(pa, pb, cv::FM_RANSAC, options.epipolar_threshold_px,
                                              options.ransac_confidence, mask);
     if (F.rows != 3 || F.cols != 3) {

@@ -13,6 +13,13 @@ bool LoopDetectorOptions::IsValid(std::string* error) const {
   return recognition.IsValid(error) && verification.IsValid(error);
 }
 
+LoopDetectorOptions ImageSequenceDetectorOptions() {
+  LoopDetectorOptions options;
+  options.recognition.num_recent_excluded = 3;
+  options.recognition.temporal_consistency = 1;
+  return options;
+}
+
 LoopDetector::LoopDetector(const LoopDetectorOptions& options, int num_words)
     : options_(options), recognizer_(options.recognition, num_words) {
   std::string error;

@@ -27,9 +27,10 @@ bool OrbOptions::IsValid(std::string* error) const {
 OrbExtractor::OrbExtractor(const OrbOptions& options) : options_(options) {
   std::string error;
   assert(options_.IsValid(&error));
-  // Detect twice the budget so that sparse cells can still be filled from their own corners.
+  // Detect twice the budget so that sparse cells can still be filled from their own corners;
+  // an edge threshold of 19 (as ORB-SLAM) lets the outer cells keep corners too.
   orb_ = cv::ORB::create(2 * options_.max_features, options_.scale_factor, options_.num_levels,
-                         31, 0, 2, cv::ORB::HARRIS_SCORE, 31, options_.fast_threshold);
+                         19, 0, 2, cv::ORB::HARRIS_SCORE, 31, options_.fast_threshold);
 }
 
 OrbFeatures OrbExtractor::Extract(const cv::Mat& gray) const {

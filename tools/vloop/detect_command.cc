@@ -21,7 +21,7 @@ constexpr char kHelp[] =
     "Prints 'loop QUERY MATCH score=S inliers=I' per accepted revisit (S: the score normalised\n"
     "by the query's score against its previous image), then 'frames=N loops=M'.\n"
     "  --exclude-recent N  the N images before the query are never candidates (default 3)\n"
-    "  --consistency N     earlier consecutive queries that must agree (default 0)\n"
+    "  --consistency N     earlier consecutive queries that must agree (default 1)\n"
     "  --verbose           also print every candidate island\n";
 
 }  // namespace
@@ -42,9 +42,7 @@ int DetectCommand(int argc, char** argv) {
     std::fprintf(stderr, "error: need exactly one directory\n%s", kHelp);
     return kExitUsage;
   }
-  visual_loop::LoopDetectorOptions options;
-  options.recognition.num_recent_excluded = 3;
-  options.recognition.temporal_consistency = 0;
+  visual_loop::LoopDetectorOptions options = visual_loop::ImageSequenceDetectorOptions();
   sensor::PinholeIntrinsics intrinsics;
   if (const auto text = args.Get("--intrinsics"); text && !ParseIntrinsics(*text, &intrinsics)) {
     std::fprintf(stderr, "error: --intrinsics wants fx,fy,cx,cy (fx, fy > 0), got '%s'\n", text->c_str());

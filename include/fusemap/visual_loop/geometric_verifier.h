@@ -28,7 +28,7 @@ struct VerificationOptions {
   // grid, in both images; a loop seen through one poster corner is not a loop.
   int grid_cols = 4;
   int grid_rows = 4;
-  int min_occupied_cells = 5;
+  int min_occupied_cells = 4;
   bool IsValid(std::string* error) const;
 };
 

@@ -23,6 +23,11 @@ struct LoopDetectorOptions {
   bool IsValid(std::string* error) const;
 };
 
+// Defaults for a folder of images taken as one sequence (fusemap_vloop detect): images are far
+// apart compared with a robot's keyframes, so only the 3 previous images are excluded and one
+// earlier query must agree with the candidate island.
+LoopDetectorOptions ImageSequenceDetectorOptions();
+
 // A revisit: the query keyframe shows the place of an earlier one. verification.T_a_b is the
 // pose of the query camera in the matched camera (a = match, b = query).
 struct DetectedLoop {
