@@ -216,7 +216,8 @@ const char* ToString(VerificationMethod method) {
 VerificationResult VerifyKeyframes(const Keyframe& a, const Keyframe& b,
                                    const VerificationOptions& options) {
   VerificationResult result;
-  const std::vector<cv::DMatch> matches = MatchDescriptors(a.descriptors, b.descriptors, options.matching);
+  const std::vector<cv::DMatch> matches =
+      MatchDescriptors(a.descriptors, b.descriptors, options.matching, &a.vocabulary_nodes, &b.vocabulary_nodes);
   result.matches = static_cast<int>(matches.size());
   if (a.has_depth() && HasIntrinsics(b)) {
     VerifyPnp(a, b, matches, options, &result);

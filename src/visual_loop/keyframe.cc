@@ -18,12 +18,13 @@ size_t Keyframe::BytesUsed() const {
   return sizeof(Keyframe) + keypoints.capacity() * sizeof(cv::Point2f) +
          descriptors.total() * descriptors.elemSize() +
          points_camera.capacity() * sizeof(Eigen::Vector3f) +
-         bow.capacity() * sizeof(BowVector::value_type);
+         bow.capacity() * sizeof(BowVector::value_type) +
+         vocabulary_nodes.capacity() * sizeof(uint32_t);
 }
 
 Keyframe MakeKeyframe(const cv::Mat& image, const cv::Mat& depth_m,
                       const sensor::PinholeIntrinsics& intrinsics, const OrbExtractor& extractor,
-                      const Vocabulary* vocabulary, const DepthOptions& depth_options) {
+                      const Vocabulary* vocabulary, const KeyframeOptions& options) {
   assert(depth_m.empty() || (depth_m.type() == CV_32FC1 && depth_m.size() == image.size()));
   const cv::Mat gray = ToGray(image);
   OrbFeatures features = extractor.Extract(gray);
@@ -42,7 +43,7 @@ Keyframe MakeKeyframe(const cv::Mat& image, const cv::Mat& depth_m,
       const int u = std::min(std::max(static_cast<int>(std::lround(pt.x)), 0), depth_m.cols - 1);
       const int v = std::min(std::max(static_cast<int>(std::lround(pt.y)), 0), depth_m.rows - 1);
       const float z = depth_m.at<float>(v, u);
-      if (!(z >= depth_options.min_depth_m && z <= depth_options.max_depth_m)) {
+      if (!(z >= options.min_depth_m && z <= options.max_depth_m)) {
         keyframe.points_camera.emplace_back(nan, nan, nan);
         continue;
       }
@@ -51,7 +52,10 @@ Keyframe MakeKeyframe(const cv::Mat& image, const cv::Mat& depth_m,
                                           z);
     }
   }
-  if (vocabulary != nullptr) keyframe.bow = vocabulary->Transform(keyframe.descriptors);
+  if (vocabulary != nullptr) {
+    keyframe.bow = vocabulary->Transform(keyframe.descriptors, options.direct_index_level,
+                                         &keyframe.vocabulary_nodes);
+  }
   return keyframe;
 }
 

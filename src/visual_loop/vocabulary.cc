@@ -66,9 +66,11 @@ Vocabulary::Vocabulary(int branching, int levels, std::vector<Node> nodes,
       centres_(std::move(centres)),
       word_weights_(std::move(word_weights)) {}
 
-int Vocabulary::WordOf(const uint8_t* descriptor) const {
+int Vocabulary::WordOf(const uint8_t* descriptor, int node_level, uint32_t* node_at_level) const {
   assert(!nodes_.empty());
   uint32_t node = 0;
+  int level = 0;
+  if (node_at_level != nullptr) *node_at_level = 0;
   while (nodes_[node].word < 0) {
     const Node& parent = nodes_[node];
     uint32_t best = parent.first_child;
@@ -82,16 +84,21 @@ int Vocabulary::WordOf(const uint8_t* descriptor) const {
       }
     }
     node = best;
+    ++level;
+    if (node_at_level != nullptr && level <= node_level) *node_at_level = node;
   }
   return nodes_[node].word;
 }
 
-BowVector Vocabulary::Transform(const cv::Mat& descriptors) const {
+BowVector Vocabulary::Transform(const cv::Mat& descriptors, int node_level,
+                                std::vector<uint32_t>* nodes) const {
   assert(descriptors.empty() || (descriptors.type() == CV_8UC1 && descriptors.cols == 32));
   BowVector vector;
   vector.reserve(descriptors.rows);
+  if (nodes != nullptr) nodes->resize(descriptors.rows);
   for (int i = 0; i < descriptors.rows; ++i) {
-    const int word = WordOf(descriptors.ptr<uint8_t>(i));
+    const int word = WordOf(descriptors.ptr<uint8_t>(i), node_level,
+                            nodes != nullptr ? &(*nodes)[i] : nullptr);
     const float weight = word_weights_[word];
     // tf-idf: each occurrence adds the idf; the division by the image's feature count is the
     // same for all words and disappears in the L1 normalisation.

@@ -24,8 +24,8 @@ Views MakeViews(const common::Rigid3d& T_a_b, bool depth_in_a, const cv::Mat& ma
   const cv::Mat depth_a = depth_in_a ? cv::Mat(in.height, in.width, CV_32FC1, cv::Scalar(kPlaneDepthM))
                                      : cv::Mat();
   const OrbExtractor extractor{OrbOptions{}};
-  return {MakeKeyframe(image_a, depth_a, in, extractor, nullptr, DepthOptions{}),
-          MakeKeyframe(image_b, cv::Mat(), in, extractor, nullptr, DepthOptions{})};
+  return {MakeKeyframe(image_a, depth_a, in, extractor, nullptr, KeyframeOptions{}),
+          MakeKeyframe(image_b, cv::Mat(), in, extractor, nullptr, KeyframeOptions{})};
 }
 
 TEST(GeometricVerifierTest, PnpRecoversTheKnownTransform) {
@@ -59,8 +59,8 @@ TEST(GeometricVerifierTest, EssentialMatrixRecoversRotationAndDirectionWithoutDe
   cv::Mat image_b = far_b.clone();
   near_b.copyTo(image_b, near_mask_b > 200);
   const OrbExtractor extractor{OrbOptions{}};
-  const Keyframe a = MakeKeyframe(image_a, cv::Mat(), in, extractor, nullptr, DepthOptions{});
-  const Keyframe b = MakeKeyframe(image_b, cv::Mat(), in, extractor, nullptr, DepthOptions{});
+  const Keyframe a = MakeKeyframe(image_a, cv::Mat(), in, extractor, nullptr, KeyframeOptions{});
+  const Keyframe b = MakeKeyframe(image_b, cv::Mat(), in, extractor, nullptr, KeyframeOptions{});
   const VerificationResult result = VerifyKeyframes(a, b, VerificationOptions{});
   ASSERT_TRUE(result.verified) << result.reason;
   EXPECT_EQ(result.method, VerificationMethod::kEssential);
@@ -98,9 +98,9 @@ TEST(GeometricVerifierTest, UnrelatedImagesAreNotVerified) {
   const OrbExtractor extractor{OrbOptions{}};
   const cv::Mat depth(in.height, in.width, CV_32FC1, cv::Scalar(kPlaneDepthM));
   const Keyframe a = MakeKeyframe(testing::RandomTexture(in.width, in.height, 1), depth, in,
-                                  extractor, nullptr, DepthOptions{});
+                                  extractor, nullptr, KeyframeOptions{});
   const Keyframe b = MakeKeyframe(testing::RandomTexture(in.width, in.height, 2), cv::Mat(), in,
-                                  extractor, nullptr, DepthOptions{});
+                                  extractor, nullptr, KeyframeOptions{});
   const VerificationResult result = VerifyKeyframes(a, b, VerificationOptions{});
   EXPECT_FALSE(result.verified);
   EXPECT_FALSE(result.reason.empty());

@@ -47,7 +47,7 @@ TEST(OrbExtractorTest, KeyframeBackProjectsDepthAndStaysCompact) {
   const cv::Mat image = testing::RandomTexture(640, 480, 4);
   cv::Mat depth(480, 640, CV_32FC1, cv::Scalar(2.0f));
   depth(cv::Rect(0, 0, 320, 480)).setTo(0.0f);  // no depth on the left half
-  const Keyframe keyframe = MakeKeyframe(image, depth, in, OrbExtractor(OrbOptions{}), nullptr, DepthOptions{});
+  const Keyframe keyframe = MakeKeyframe(image, depth, in, OrbExtractor(OrbOptions{}), nullptr, KeyframeOptions{});
   ASSERT_EQ(keyframe.points_camera.size(), keyframe.keypoints.size());
   int with_depth = 0;
   for (size_t i = 0; i < keyframe.keypoints.size(); ++i) {

@@ -42,7 +42,7 @@ Keyframe Load(const std::string& image, const std::string& depth, double depth_s
   EXPECT_FALSE(color.empty()) << image;
   cv::Mat depth_m;
   if (!depth.empty()) depth_m = DepthToMeters(cv::imread(depth, cv::IMREAD_ANYDEPTH), depth_scale);
-  return MakeKeyframe(color, depth_m, in, OrbExtractor(OrbOptions{}), vocabulary, DepthOptions{});
+  return MakeKeyframe(color, depth_m, in, OrbExtractor(OrbOptions{}), vocabulary, KeyframeOptions{});
 }
 
 // Open3D/Redwood trajectory.log: a "i i i+1" line, then the 4x4 T_world_cam.
@@ -140,7 +140,7 @@ Keyframe LoadEuroc(int index, const Vocabulary& vocabulary) {
   cv::Mat image;
   cv::undistort(raw, image, K, distortion);
   return MakeKeyframe(image, cv::Mat(), Intrinsics(458.654, 457.296, 367.215, 248.375),
-                      OrbExtractor(OrbOptions{}), &vocabulary, DepthOptions{});
+                      OrbExtractor(OrbOptions{}), &vocabulary, KeyframeOptions{});
 }
 
 common::Rigid3d BodyPose(double w, double x, double y, double z, double px, double py, double pz) {

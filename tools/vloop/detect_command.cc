@@ -78,7 +78,7 @@ int DetectCommand(int argc, char** argv) {
     const cv::Mat image = ReadImage(images[i], cv::IMREAD_GRAYSCALE);
     if (image.empty()) return kExitBadInput;
     visual_loop::Keyframe keyframe = visual_loop::MakeKeyframe(
-        image, cv::Mat(), intrinsics, extractor, &*vocabulary, visual_loop::DepthOptions{});
+        image, cv::Mat(), intrinsics, extractor, &*vocabulary, visual_loop::KeyframeOptions{});
     keyframe.id = static_cast<int>(i);
     std::vector<visual_loop::PlaceCandidate> candidates;
     const auto loop = detector.Process(std::move(keyframe), &candidates);

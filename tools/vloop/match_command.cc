@@ -91,9 +91,9 @@ int MatchCommand(int argc, char** argv) {
   const visual_loop::OrbExtractor extractor{visual_loop::OrbOptions{}};
   const visual_loop::Vocabulary* vocabulary_ptr = vocabulary ? &*vocabulary : nullptr;
   const visual_loop::Keyframe a = visual_loop::MakeKeyframe(image_a, depth_a, intrinsics, extractor,
-                                                            vocabulary_ptr, visual_loop::DepthOptions{});
+                                                            vocabulary_ptr, visual_loop::KeyframeOptions{});
   const visual_loop::Keyframe b = visual_loop::MakeKeyframe(image_b, depth_b, intrinsics, extractor,
-                                                            vocabulary_ptr, visual_loop::DepthOptions{});
+                                                            vocabulary_ptr, visual_loop::KeyframeOptions{});
   const visual_loop::VerificationResult result =
       visual_loop::VerifyKeyframes(a, b, visual_loop::VerificationOptions{});
 

@@ -31,6 +31,9 @@ struct Keyframe {
   cv::Mat descriptors;  // CV_8UC1, one 32-byte row per keypoint
   std::vector<Eigen::Vector3f> points_camera;  // empty without depth, else one per keypoint
   BowVector bow;
+  // Per keypoint, its vocabulary node at KeyframeOptions::direct_index_level (empty without a
+  // vocabulary): matching compares only keypoints under the same node.
+  std::vector<uint32_t> vocabulary_nodes;
 
   bool has_depth() const { return !points_camera.empty(); }
   int num_points_with_depth() const;
@@ -38,16 +41,19 @@ struct Keyframe {
   size_t BytesUsed() const;
 };
 
-struct DepthOptions {
+struct KeyframeOptions {
   double min_depth_m = 0.2;
   double max_depth_m = 6.0;  // structured-light depth beyond this is too noisy to anchor PnP
+  // Level of the vocabulary tree whose nodes group keypoints for matching: 1 keeps the most
+  // true matches (10 groups with k = 10), deeper levels match faster and lose more at borders.
+  int direct_index_level = 1;
 };
 
 // Builds a keyframe from an image (grey or BGR) and, optionally, a depth image registered to it
 // (CV_32FC1 in metres, 0 or NaN for no value; empty for none). vocabulary may be null (no BoW).
 Keyframe MakeKeyframe(const cv::Mat& image, const cv::Mat& depth_m,
                       const sensor::PinholeIntrinsics& intrinsics, const OrbExtractor& extractor,
-                      const Vocabulary* vocabulary, const DepthOptions& depth_options);
+                      const Vocabulary* vocabulary, const KeyframeOptions& depth_options);
 
 // A 16-bit depth image (value / scale = metres; 0 = no value) as CV_32FC1 metres.
 cv::Mat DepthToMeters(const cv::Mat& depth_u16, double scale);

@@ -43,10 +43,15 @@ class Vocabulary {
   bool empty() const { return nodes_.empty(); }
   float word_weight(int word) const { return word_weights_[word]; }
 
-  int WordOf(const uint8_t* descriptor) const;
+  // The word of a descriptor; node_at_level (optional) receives the node it passed at
+  // node_level (1 = a child of the root; a leaf above that level is its own node).
+  int WordOf(const uint8_t* descriptor, int node_level = 0, uint32_t* node_at_level = nullptr) const;
   // tf-idf vector of an image's descriptors (CV_8UC1, N x 32), L1-normalised. Words whose idf is
-  // 0 (seen in every training image) carry no information and are left out.
-  BowVector Transform(const cv::Mat& descriptors) const;
+  // 0 (seen in every training image) carry no information and are left out. nodes (optional)
+  // receives per descriptor its node at node_level: the "direct index" that restricts matching
+  // to descriptors under the same node (Galvez-Lopez & Tardos 2012, Sec. VI).
+  BowVector Transform(const cv::Mat& descriptors, int node_level = 0,
+                      std::vector<uint32_t>* nodes = nullptr) const;
 
   // Binary file: "FMBOWVOC" magic, u32 version, u32 branching, u32 levels, u32 node count,
   // u32 word count, per node (32-byte centre, u32 first child, u32 child count, i32 word), per
