@@ -9,14 +9,7 @@ namespace fusemap {
 namespace visual_loop {
 namespace {
 
-// A camera 0.5 m up and 0.1 m forward, looking along base x (optical z forward, x right,
-// y down), tilted down by 5 degrees.
-common::Rigid3d CameraMount() {
-  Eigen::Matrix3d R_base_optical;
-  R_base_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(5.0 * M_PI / 180.0, Eigen::Vector3d::UnitY()));
-  return common::Rigid3d(Eigen::Vector3d(0.1, 0.0, 0.5), tilt * Eigen::Quaterniond(R_base_optical));
-}
+common::Rigid3d CameraMount() { return testing::CameraMount(0.5, 5.0 * M_PI / 180.0); }
 
 common::Rigid3d CameraMotionFor(const common::Rigid3d& T_base_a_base_b) {
   const common::Rigid3d mount = CameraMount();

@@ -72,6 +72,15 @@ inline common::Rigid3d PoseFromTranslationRpy(double x, double y, double z, doub
   return common::Rigid3d(Eigen::Vector3d(x, y, z), q);
 }
 
+// A camera 0.1 m forward and height_m up on the base, looking along base x (optical z forward,
+// x right, y down), pitched down by tilt_rad.
+inline common::Rigid3d CameraMount(double height_m, double tilt_rad) {
+  Eigen::Matrix3d R_base_optical;
+  R_base_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
+  const Eigen::Quaterniond tilt(Eigen::AngleAxisd(tilt_rad, Eigen::Vector3d::UnitY()));
+  return common::Rigid3d(Eigen::Vector3d(0.1, 0.0, height_m), tilt * Eigen::Quaterniond(R_base_optical));
+}
+
 inline double AngleBetweenDeg(const common::Rigid3d& a, const common::Rigid3d& b) {
   return a.rotation().angularDistance(b.rotation()) * 180.0 / M_PI;
 }

@@ -10,11 +10,7 @@ namespace {
 
 constexpr double kPlaneDepthM = 2.0;
 
-common::Rigid3d CameraMount() {
-  Eigen::Matrix3d R_base_optical;
-  R_base_optical << 0, 0, 1, -1, 0, 0, 0, -1, 0;
-  return common::Rigid3d(Eigen::Vector3d(0.1, 0.0, 0.5), Eigen::Quaterniond(R_base_optical));
-}
+common::Rigid3d CameraMount() { return testing::CameraMount(0.5, 0.0); }
 
 CameraFrame Frame(const cv::Mat& image, bool with_depth, double stamp_s) {
   CameraFrame frame;
