@@ -1,5 +1,6 @@
 #include "fusemap/visual_loop/visual_loop_checker.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
@@ -13,7 +14,7 @@ bool VisualLoopCheckerOptions::IsValid(std::string* error) const {
     return false;
   }
   if (min_points_to_contradict < 1 || !(max_overlap_distance_m > 0.0) ||
-      !(max_overlap_yaw_rad > 0.0) || max_contradiction_matches < 0) {
+      !(max_overlap_yaw_rad > 0.0) || max_contradiction_inliers < 0) {
     *error = "visual loop checker: contradiction thresholds must be positive";
     return false;
   }
@@ -46,7 +47,8 @@ VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& fr
   T_base_camera_[keyframe.id] = frame.T_base_camera;
   std::vector<PlaceCandidate> candidates;
   const std::optional<DetectedLoop> loop = detector_.Process(std::move(keyframe), &candidates);
-  for (const PlaceCandidate& c : candidates) stats_.candidates += c.consistent ? 1 : 0;
+  stats_.candidates += std::any_of(candidates.begin(), candidates.end(),
+                                   [](const PlaceCandidate& c) { return c.consistent; });
   if (!loop) return out;
   const Keyframe* match = detector_.Find(loop->match_id);
   const Keyframe* query = detector_.Find(loop->query_id);
@@ -109,9 +111,10 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
                     static_cast<int>(query->keypoints.size()) >= options_.min_points_to_contradict;
   const bool should_overlap = expected.translation().norm() <= options_.max_overlap_distance_m &&
                               std::abs(expected.angle_rad()) <= options_.max_overlap_yaw_rad;
-  if (rich && should_overlap && result.matches <= options_.max_contradiction_matches) {
+  if (rich && should_overlap && result.inliers <= options_.max_contradiction_inliers) {
     out.check = VisualCheck::kContradicted;
-    out.reason = "rich views that should overlap share only " + std::to_string(result.matches) + " matches";
+    out.reason = "rich views that should overlap share only " + std::to_string(result.inliers) +
+                 " consistent matches";
   }
   return out;
 }

@@ -16,7 +16,8 @@ constexpr char kUsage[] =
     "      matches two images and prints inliers and T_a_b (pose of B in A): with --depth-a by\n"
     "      PnP on A's 3D points (metric), else by the essential matrix (translation up to scale)\n"
     "      with --intrinsics, else the fundamental matrix (no pose)\n"
-    "  detect DIR [--intrinsics fx,fy,cx,cy] [--vocabulary V] [--consistency N] [--verbose]\n"
+    "  detect DIR [--intrinsics fx,fy,cx,cy] [--vocabulary V] [--exclude-recent N]\n"
+    "             [--consistency N] [--verbose]\n"
     "      reads DIR's images as one sequence in natural name order and prints\n"
     "      'loop QUERY MATCH score=... inliers=...' per accepted revisit, then 'frames=N loops=M'\n"
     "Each command takes --help. Exit codes: 0 success, 1 bad input, 2 usage error.\n";

@@ -28,11 +28,12 @@ struct VisualLoopCheckerOptions {
   PlanarConstraintOptions planar;
   // A laser loop is positively contradicted only when both keyframes are rich (this many
   // keypoints with depth in the stored one), the laser says their views overlap (bases this
-  // close and this little turned), and yet at most max_contradiction_matches descriptors match.
+  // close and this little turned), and yet geometry finds at most max_contradiction_inliers
+  // consistent matches (chance level for unrelated views).
   int min_points_to_contradict = 300;
   double max_overlap_distance_m = 1.0;
   double max_overlap_yaw_rad = 0.5;
-  int max_contradiction_matches = 20;
+  int max_contradiction_inliers = 12;
   bool IsValid(std::string* error) const;
 };
 
