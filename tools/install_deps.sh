@@ -9,3 +9,5 @@ apt-get install -y --no-install-recommends \
   liblcm-dev liblcm-bin liblcm-java libglib2.0-dev default-jdk-headless \
   libapriltag-dev liboctomap-dev libgtest-dev libgmock-dev libyaml-cpp-dev \
   zlib1g-dev iproute2 util-linux
+# Not needed to build or test: data/vocabulary/rebuild.sh installs opencv-doc and
+# mate-backgrounds (the natural images the committed ORB vocabulary is trained on) when run.

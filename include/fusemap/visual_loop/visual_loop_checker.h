@@ -1,0 +1,133 @@
+#ifndef FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
+#define FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
+
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/sensor/rgbd_frame.h"
+#include "fusemap/visual_loop/keyframe_selector.h"
+#include "fusemap/visual_loop/loop_arbiter.h"
+#include "fusemap/visual_loop/loop_detector.h"
+#include "fusemap/visual_loop/planar_constraint.h"
+
+namespace fusemap {
+namespace visual_loop {
+
+struct VisualLoopCheckerOptions {
+  KeyframeSelectorOptions selector;
+  OrbOptions orb;
+  KeyframeOptions keyframe;
+  LoopDetectorOptions detector;
+  PlanarConstraintOptions planar;
+  // A laser loop is positively contradicted only when both keyframes are rich (this many
+  // keypoints with depth in the stored one), the laser says their views overlap (bases this
+  // close and this little turned), and yet geometry finds at most max_contradiction_inliers
+  // consistent matches (chance level for unrelated views).
+  int min_points_to_contradict = 300;
+  double max_overlap_distance_m = 1.0;
+  double max_overlap_yaw_rad = 0.5;
+  int max_contradiction_inliers = 12;
+  bool IsValid(std::string* error) const;
+};
+
+// One camera image as the checker takes it: grey or BGR, depth registered to it (CV_32FC1
+// metres, empty for none) and the camera's mount on the robot base.
+struct CameraFrame {
+  double stamp_s = 0.0;
+  cv::Mat image;
+  cv::Mat depth_m;
+  sensor::PinholeIntrinsics intrinsics;
+  common::Rigid3d T_base_camera;
+};
+
+// A verified visual loop as a planar constraint between the robot bases of two keyframes.
+struct VisualLoopConstraint {
+  int query_keyframe = -1;
+  int match_keyframe = -1;
+  int query_node = -1;
+  int match_node = -1;
+  int match_submap = -1;
+  common::Rigid2d T_match_base_query_base;
+  Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
+  int inliers = 0;
+  double score = 0.0;
+};
+
+struct VisualCheckResult {
+  VisualCheck check = VisualCheck::kNotChecked;
+  std::optional<VisualLoopConstraint> constraint;  // when kVerified
+  std::string reason;
+};
+
+struct VisualLoopCheckerStats {
+  int keyframes = 0;        // held now
+  int candidates = 0;       // queries with a consistent island
+  int verified = 0;         // visual loops returned
+  int rejected = 0;         // candidates refused by geometry or by the floor-plane check
+};
+
+// The ORB visual loop checker as the pose graph side sees it: it keeps keyframes (by motion or
+// time, tagged with their node and submap), finds revisits by appearance alone and returns them
+// as planar base-to-base constraints, and checks a laser loop's place on request. The caller
+// turns constraints into node-in-submap measurements (ToSubmapMeasurement) and arbitrates
+// (ArbitrateLoop). No threads: the session runs it on its own back-end thread.
+class VisualLoopChecker {
+ public:
+  VisualLoopChecker(const VisualLoopCheckerOptions& options,
+                    std::shared_ptr<const Vocabulary> vocabulary);
+
+  struct FrameResult {
+    bool keyframe = false;  // the frame was kept
+    std::optional<VisualLoopConstraint> loop;
+    std::string rejection;  // why a candidate was refused, if one was
+  };
+  // Offers a frame with the robot's local-SLAM pose and the node/submap it belongs to.
+  FrameResult AddFrame(const CameraFrame& frame, const common::Rigid2d& T_local_base, int node,
+                       int submap);
+
+  // Verifies keyframe query against keyframe match where a laser loop says the query base
+  // stands at expected_T_match_base_query_base.
+  VisualCheckResult CheckPlace(int query_keyframe, int match_keyframe,
+                               const common::Rigid2d& expected_T_match_base_query_base) const;
+
+  // Keyframes of a submap, and the keyframe whose node is nearest to `node` (-1 if none).
+  std::vector<int> KeyframesOfSubmap(int submap) const;
+  int KeyframeNearestNode(int node) const;
+  // Releases the keyframes of a trimmed submap.
+  void RemoveSubmap(int submap);
+
+  VisualLoopCheckerStats stats() const;
+  const LoopDetector& detector() const { return detector_; }
+
+ private:
+  std::optional<VisualLoopConstraint> ToConstraint(const Keyframe& match, const Keyframe& query,
+                                                   const VerificationResult& result,
+                                                   std::string* rejection) const;
+
+  VisualLoopCheckerOptions options_;
+  std::shared_ptr<const Vocabulary> vocabulary_;
+  OrbExtractor extractor_;
+  KeyframeSelector selector_;
+  LoopDetector detector_;
+  std::map<int, common::Rigid3d> T_base_camera_;  // per keyframe id
+  int next_id_ = 0;
+  VisualLoopCheckerStats stats_;
+};
+
+// The node-in-submap measurement implied by a visual constraint, given where the matched
+// keyframe's base stands in the submap (from the pose graph); covariance rotated into the
+// submap frame (first order, the matched pose taken as exact).
+LoopMeasurement2D ToSubmapMeasurement(const common::Rigid2d& T_submap_match_base,
+                                      const VisualLoopConstraint& constraint);
+
+}  // namespace visual_loop
+}  // namespace fusemap
+
+#endif  // FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_

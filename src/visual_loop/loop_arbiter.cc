@@ -1,0 +1,98 @@
+#include "fusemap/visual_loop/loop_arbiter.h"
+
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+
+namespace fusemap {
+namespace visual_loop {
+
+bool ArbitrationOptions::IsValid(std::string* error) const {
+  if (!(max_translation_disagreement_m > 0.0) || !(max_rotation_disagreement_rad > 0.0)) {
+    *error = "arbitration: disagreement thresholds must be positive";
+    return false;
+  }
+  return true;
+}
+
+const char* ToString(LoopSource source) {
+  switch (source) {
+    case LoopSource::kLaser:
+      return "laser";
+    case LoopSource::kVisual:
+      return "visual";
+    case LoopSource::kBoth:
+      return "both";
+  }
+  return "?";
+}
+
+const char* ToString(LoopDecision decision) {
+  switch (decision) {
+    case LoopDecision::kLaserConfirmed:
+      return "laser_confirmed";
+    case LoopDecision::kVisualOverride:
+      return "visual_override";
+    case LoopDecision::kVisualForced:
+      return "visual_forced";
+    case LoopDecision::kLaserKept:
+      return "laser_kept";
+    case LoopDecision::kLaserRejected:
+      return "laser_rejected";
+  }
+  return "?";
+}
+
+ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMeasurement2D>& laser,
+                                const std::optional<LoopMeasurement2D>& visual,
+                                VisualCheck visual_check, const ArbitrationOptions& options) {
+  assert(laser || visual);
+  ArbitrationRecord record;
+  record.node = node;
+  record.submap = submap;
+  record.laser = laser;
+  record.visual = visual;
+  if (laser && visual) {
+    record.source = LoopSource::kBoth;
+    const common::Rigid2d difference = laser->T_submap_node.inverse() * visual->T_submap_node;
+    record.translation_disagreement_m = difference.translation().norm();
+    record.rotation_disagreement_rad = std::abs(difference.angle_rad());
+    char numbers[96];
+    std::snprintf(numbers, sizeof(numbers), "differ by %.3f m, %.2f deg",
+                  record.translation_disagreement_m, record.rotation_disagreement_rad * 180.0 / M_PI);
+    const bool agree = record.translation_disagreement_m <= options.max_translation_disagreement_m &&
+                       record.rotation_disagreement_rad <= options.max_rotation_disagreement_rad;
+    if (agree) {
+      record.decision = LoopDecision::kLaserConfirmed;
+      record.chosen = laser;
+      record.reason = std::string("laser and visual agree (") + numbers + "): laser kept";
+    } else {
+      record.decision = LoopDecision::kVisualOverride;
+      record.chosen = visual;
+      record.reason = std::string("laser and visual disagree (") + numbers + "): visual replaces laser";
+    }
+    return record;
+  }
+  if (visual) {
+    record.source = LoopSource::kVisual;
+    record.decision = LoopDecision::kVisualForced;
+    record.chosen = visual;
+    record.reason = "visual loop without a laser loop: forced";
+    return record;
+  }
+  record.source = LoopSource::kLaser;
+  if (visual_check == VisualCheck::kContradicted) {
+    record.decision = LoopDecision::kLaserRejected;
+    record.reason = "the camera saw the same place and found no match: laser loop rejected";
+    return record;
+  }
+  record.decision = LoopDecision::kLaserKept;
+  record.chosen = laser;
+  record.reason = visual_check == VisualCheck::kNotChecked
+                      ? "laser loop, no visual check possible: kept"
+                      : "laser loop, visual check consistent: kept";
+  return record;
+}
+
+}  // namespace visual_loop
+}  // namespace fusemap

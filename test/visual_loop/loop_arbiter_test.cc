@@ -1,0 +1,71 @@
+#include "fusemap/visual_loop/loop_arbiter.h"
+
+#include <gtest/gtest.h>
+
+namespace fusemap {
+namespace visual_loop {
+namespace {
+
+LoopMeasurement2D Measurement(double x, double y, double yaw) {
+  LoopMeasurement2D m;
+  m.T_submap_node = common::Rigid2d(x, y, yaw);
+  return m;
+}
+
+struct Row {
+  std::optional<LoopMeasurement2D> laser;
+  std::optional<LoopMeasurement2D> visual;
+  VisualCheck check;
+  LoopSource source;
+  LoopDecision decision;
+  bool has_chosen;
+  bool chosen_is_visual;
+};
+
+TEST(LoopArbiterTest, DecisionTable) {
+  const auto laser = Measurement(2.0, 1.0, 0.5);
+  const auto visual_close = Measurement(2.1, 1.05, 0.52);   // 0.11 m, 1.1 deg off
+  const auto visual_far = Measurement(2.9, 1.0, 0.5);       // 0.9 m off
+  const auto visual_turned = Measurement(2.0, 1.0, 0.75);   // 14 deg off
+  const Row rows[] = {
+      {laser, visual_close, VisualCheck::kVerified, LoopSource::kBoth, LoopDecision::kLaserConfirmed, true, false},
+      {laser, visual_far, VisualCheck::kVerified, LoopSource::kBoth, LoopDecision::kVisualOverride, true, true},
+      {laser, visual_turned, VisualCheck::kVerified, LoopSource::kBoth, LoopDecision::kVisualOverride, true, true},
+      {std::nullopt, visual_far, VisualCheck::kVerified, LoopSource::kVisual, LoopDecision::kVisualForced, true, true},
+      {laser, std::nullopt, VisualCheck::kNotChecked, LoopSource::kLaser, LoopDecision::kLaserKept, true, false},
+      {laser, std::nullopt, VisualCheck::kContradicted, LoopSource::kLaser, LoopDecision::kLaserRejected, false, false},
+  };
+  for (size_t i = 0; i < std::size(rows); ++i) {
+    const Row& row = rows[i];
+    const ArbitrationRecord record = ArbitrateLoop(7, 3, row.laser, row.visual, row.check, ArbitrationOptions{});
+    SCOPED_TRACE("row " + std::to_string(i) + ": " + record.reason);
+    EXPECT_EQ(record.node, 7);
+    EXPECT_EQ(record.submap, 3);
+    EXPECT_EQ(record.source, row.source);
+    EXPECT_EQ(record.decision, row.decision);
+    EXPECT_FALSE(record.reason.empty());
+    ASSERT_EQ(record.chosen.has_value(), row.has_chosen);
+    // Both measurements are kept as evidence, whichever is chosen.
+    EXPECT_EQ(record.laser.has_value(), row.laser.has_value());
+    EXPECT_EQ(record.visual.has_value(), row.visual.has_value());
+    if (record.chosen) {
+      const auto& expected = row.chosen_is_visual ? *row.visual : *row.laser;
+      EXPECT_EQ(record.chosen->T_submap_node.translation(), expected.T_submap_node.translation());
+      EXPECT_EQ(record.chosen->T_submap_node.angle_rad(), expected.T_submap_node.angle_rad());
+    }
+  }
+}
+
+TEST(LoopArbiterTest, DisagreementIsMeasuredInTheNodeFrame) {
+  const ArbitrationRecord record = ArbitrateLoop(1, 1, Measurement(0.0, 0.0, M_PI / 2),
+                                                 Measurement(0.0, 0.2, M_PI / 2),
+                                                 VisualCheck::kVerified, ArbitrationOptions{});
+  EXPECT_NEAR(record.translation_disagreement_m, 0.2, 1e-12);
+  EXPECT_NEAR(record.rotation_disagreement_rad, 0.0, 1e-12);
+  EXPECT_STREQ(ToString(record.decision), "laser_confirmed");
+  EXPECT_STREQ(ToString(record.source), "both");
+}
+
+}  // namespace
+}  // namespace visual_loop
+}  // namespace fusemap
