@@ -385,6 +385,10 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
       r.scan.ranges_m = std::move(msg.ranges);
       r.scan.intensities = std::move(msg.remissions);
       r.T_base_laser = msg.T_base_laser;
+      r.has_reference_pose = msg.type == CarmenMessageType::kFlaser;
+      if (r.has_reference_pose) {
+        r.reference_pose = common::Rigid2d(msg.pose[0], msg.pose[1], msg.pose[2]);
+      }
     }
     im.newest_stamp_s = std::max(im.newest_stamp_s, p.stamp_s);
     im.pending.push_back(std::move(p));

@@ -221,6 +221,26 @@ TEST(CarmenReaderTest, SaysSoWhenEveryOdomLineIsAGmappingEstimate) {
   std::remove(path.c_str());
 }
 
+TEST(CarmenReaderTest, ScansCarryGmappingsPoseAtTheirOutputStamp) {
+  const std::string path = WriteFile("reference.log", kGoodLog);
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, CarmenOptions(), &summary, &error);
+  ASSERT_EQ(records.size(), 5u) << error;
+  // FLASER: the x y theta right after the ranges; the record's stamp is the output stamp.
+  ASSERT_TRUE(records[1].has_reference_pose);
+  EXPECT_DOUBLE_EQ(records[1].reference_pose.translation().x(), 9.0);
+  EXPECT_DOUBLE_EQ(records[1].reference_pose.translation().y(), 9.0);
+  EXPECT_NEAR(std::cos(records[1].reference_pose.angle_rad()), std::cos(9.0), 1e-12);
+  EXPECT_NEAR(std::sin(records[1].reference_pose.angle_rad()), std::sin(9.0), 1e-12);
+  ASSERT_TRUE(records[3].has_reference_pose);
+  EXPECT_DOUBLE_EQ(records[3].reference_pose.translation().x(), 8.0);
+  EXPECT_DOUBLE_EQ(records[3].scan.stamp_s, 1.2);
+  EXPECT_FALSE(records[0].has_reference_pose) << "odometry";
+  EXPECT_FALSE(records[4].has_reference_pose) << "ROBOTLASER1 carries no GMapping pose";
+  std::remove(path.c_str());
+}
+
 TEST(CarmenReaderTest, KeepsFileOrderAndRepairsLateStampsSoTheyNeverDecrease) {
   // As GMapping writes them: a line stamped late (2.0) before the scan-time ODOM (1.9); the
   // poses show that file order is the true order.
