@@ -285,6 +285,10 @@ bool CarmenReader::Open(const std::string& path, std::string* error) {
     summary_.range_max_source = param_range_max_m > 0.0 ? "param" : "no_flaser";
   }
 
+  // The time statistics above left out every ODOM after NEFF with zero time and motion; with
+  // an odometry stream those are readings (their stamps, all zero, change no time policy).
+  impl_->gmapping_filter = GmappingPoseFilter(gmapping_filter.stream_odometry_lines() > 1);
+
   if (!impl_->reader.Rewind()) {
     *error = path + ": cannot rewind";
     return false;

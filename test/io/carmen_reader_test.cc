@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -218,6 +219,86 @@ TEST(CarmenReaderTest, SaysSoWhenEveryOdomLineIsAGmappingEstimate) {
   EXPECT_EQ(summary.odometry, 1);
   EXPECT_EQ(summary.gmapping_poses_dropped, 2);
   EXPECT_NE(summary.ToString().find("NO WHEEL ODOMETRY"), std::string::npos) << summary.ToString();
+  std::remove(path.c_str());
+}
+
+// A freiburg-campus-shaped log: every stamp and velocity 0, a NEFF line after each scan's
+// pose echo, and the wheel odometry (x = 0.1 m per reading, straight ahead) re-based after each
+// scan onto GMapping's pose for that scan, as GMapping prints it.
+std::string ZeroStampNeffLog(int scans, int readings_per_scan) {
+  std::ostringstream log;
+  log.precision(17);
+  common::Rigid2d T_printed_raw;  // identity until the first scan
+  int reading = 0;
+  for (int s = 0; s < scans; ++s) {
+    for (int i = 0; i < readings_per_scan; ++i, ++reading) {
+      const common::Rigid2d printed = T_printed_raw * common::Rigid2d(0.1 * reading, 0.0, 0.0);
+      log << "ODOM " << printed.translation().x() << " " << printed.translation().y() << " "
+          << printed.angle_rad() << " 0 0 0 0 pippo 0\n";
+    }
+    // GMapping's pose for the scan, taken at the last reading: off the odometry a little.
+    const common::Rigid2d raw(0.1 * (reading - 1), 0.0, 0.0);
+    const common::Rigid2d gmapping(raw.translation().x() + 0.05 * (s + 1), 0.02 * (s + 1),
+                                   0.01 * (s + 1));
+    T_printed_raw = gmapping * raw.inverse();
+    std::ostringstream pose;
+    pose.precision(17);
+    pose << gmapping.translation().x() << " " << gmapping.translation().y() << " "
+         << gmapping.angle_rad();
+    log << "FLASER 2 1 2 " << pose.str() << " " << pose.str() << " 0 pippo 0\n"
+        << "ODOM " << pose.str() << " 0 0 0 0 pippo 0\n"
+        << "NEFF 100\n";
+  }
+  return log.str();
+}
+
+TEST(CarmenReaderTest, ZeroStampsAndNeffLinesDropOnlyGmappingsPoses) {
+  const int kScans = 5, kReadings = 4;
+  const std::string path = WriteFile("zero_neff.log", ZeroStampNeffLog(kScans, kReadings));
+  CarmenOptions options;
+  options.range_max_m = 10.0;
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, options, &summary, &error);
+  ASSERT_TRUE(error.empty()) << error;
+  EXPECT_EQ(summary.time_policy, "synthesized");
+  EXPECT_EQ(summary.lasers, kScans);
+  EXPECT_EQ(summary.gmapping_poses_dropped, kScans) << summary.ToString();
+  EXPECT_EQ(summary.odometry, kScans * kReadings) << summary.ToString();
+  // With every re-basing undone the output is the wheel odometry itself: no step lost.
+  int reading = 0;
+  for (const CarmenRecord& r : records) {
+    if (r.kind != CarmenRecord::Kind::kOdometry) continue;
+    EXPECT_NEAR(r.odometry.pose.translation().x(), 0.1 * reading, 1e-9) << "reading " << reading;
+    EXPECT_NEAR(r.odometry.pose.translation().y(), 0.0, 1e-9) << "reading " << reading;
+    EXPECT_NEAR(r.odometry.pose.angle_rad(), 0.0, 1e-9) << "reading " << reading;
+    ++reading;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(CarmenReaderTest, WithoutAnOdometryStreamTheOdomAfterNeffIsGmappingsToo) {
+  // As in orebro: besides the echoes, only a line at rest at the start and, after some NEFF
+  // lines, a pose with zero time and motion metres from the last scan and centimetres from the
+  // next (GMapping's, not wheel odometry).
+  const std::string path = WriteFile(
+      "orebro_neff.log",
+      "ODOM 0 0 0 0 0 0 0 pippo 0\n"
+      "FLASER 2 1 2 0.5 0 0.1 0.5 0 0.1 0 pippo 0\n"
+      "ODOM 0.5 0 0.1 0 0 0 6.979 pippo 6.979\n"
+      "NEFF 10\n"
+      "ODOM 3.48 0.01 0.1 0 0 0 0 pippo 0\n"
+      "FLASER 2 1 2 3.5 0 0.1 3.5 0 0.1 0 pippo 0\n"
+      "ODOM 3.5 0 0.1 0 0 0 1.3e-76 pippo 1.3e-76\n"
+      "NEFF 10\n");
+  CarmenOptions options;
+  options.range_max_m = 10.0;
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, options, &summary, &error);
+  ASSERT_EQ(records.size(), 3u) << error;
+  EXPECT_EQ(summary.odometry, 1);
+  EXPECT_EQ(summary.gmapping_poses_dropped, 3);
   std::remove(path.c_str());
 }
 
