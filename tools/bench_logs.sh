@@ -11,14 +11,22 @@
 # writes OUT/table.md and OUT/table.tsv; progress on stderr. Exit 1 if any log failed (its row
 # says where), 2 on bad usage. Binaries from $FUSEMAP_BUILD (default: build/ of this checkout).
 set -u
-if [ $# -ne 3 ] || [ "$1" = "--help" ] || [ "$1" = "-h" ]; then
+export LC_ALL=C  # decimal points in the figures and the table
+usage() {
+  local line
   while IFS= read -r line; do
     [[ $line == "#!"* ]] && continue
     [[ $line == "#"* ]] || break
     line=${line#\#}
     printf '%s\n' "${line# }"
   done <"$0"
-  [ $# -eq 1 ] && { [ "$1" = "--help" ] || [ "$1" = "-h" ]; } && exit 0
+}
+if [ $# -ge 1 ] && { [ "$1" = "--help" ] || [ "$1" = "-h" ]; }; then
+  usage
+  exit 0
+fi
+if [ $# -ne 3 ]; then
+  usage >&2
   exit 2
 fi
 DIR=$(realpath "$1") PROFILE=$(realpath "$2") OUT=$(realpath -m "$3")
@@ -39,14 +47,26 @@ mkdir -p "$OUT" || exit 1
 # (data README). DIR/<log>.relations_offset overrides.
 declare -A RELATIONS_OFFSET=([intel]=976052857.337284)
 
-# kv FILE KEY: the value of the last KEY=value token in FILE (empty if none).
+# kv FILE KEY [DIGITS]: the value of the last KEY=value token in FILE (empty if none), rounded
+# to DIGITS decimals when given.
 kv() {
   local line tok value="" toks
   while IFS= read -r line; do
     read -ra toks <<<"$line"
     for tok in "${toks[@]}"; do [[ $tok == "$2="* ]] && value=${tok#*=}; done
   done <"$1"
-  printf '%s' "$value"
+  if [ $# -ge 3 ] && [ -n "$value" ]; then
+    printf "%.${3}f" "$value"
+  else
+    printf '%s' "$value"
+  fi
+}
+
+# The first three fields of /proc/loadavg: the machine is shared and timings follow its load.
+load() {
+  local fields
+  read -ra fields </proc/loadavg
+  printf '%s %s %s' "${fields[0]}" "${fields[1]}" "${fields[2]}"
 }
 
 profile_for() {
@@ -61,6 +81,7 @@ profile_for() {
   fi
 }
 
+load_start=$(load)
 shopt -s nullglob
 LOGS=("$DIR"/*.gfs.log "$DIR"/*.gfs.log.gz)
 shopt -u nullglob
@@ -128,7 +149,7 @@ for log in "${LOGS[@]}"; do
       row[scan_ms_median]=$(kv "$o" median)
       row[scan_ms_p99]=$(kv "$o" p99)
       row[peak_rss_mb]=$(kv "$o" peak_rss_mb)
-      row[wall_s]=$(kv "$o" wall_s)
+      row[wall_s]=$(kv "$o" wall_s 1)
       row[realtime_factor]=$(kv "$o" realtime_factor)
       [ $synthesized = 1 ] && row[realtime_factor]="n/a (time synthesized)"
       if [ $score_relations = 1 ]; then
@@ -139,8 +160,8 @@ for log in "${LOGS[@]}"; do
       printf ', eval' >&2
       if "$EVAL" ate --gt "$work/reference.tum" --est "$work/nodes.tum" --se2 \
         >"$work/ate_slam.txt" 2>&1; then
-        row[slam_rmse_m]=$(kv "$work/ate_slam.txt" ate_rmse_m)
-        row[slam_max_m]=$(kv "$work/ate_slam.txt" ate_max_m)
+        row[slam_rmse_m]=$(kv "$work/ate_slam.txt" ate_rmse_m 3)
+        row[slam_max_m]=$(kv "$work/ate_slam.txt" ate_max_m 3)
       else
         status="FAILED: ate (see $work/ate_slam.txt)"
       fi
@@ -149,8 +170,8 @@ for log in "${LOGS[@]}"; do
         row[odom_max_m]="n/a"
       elif "$EVAL" ate --gt "$work/reference.tum" --est "$work/odometry.tum" --se2 \
         --interpolate 1.0 >"$work/ate_odometry.txt" 2>&1; then
-        row[odom_rmse_m]=$(kv "$work/ate_odometry.txt" ate_rmse_m)
-        row[odom_max_m]=$(kv "$work/ate_odometry.txt" ate_max_m)
+        row[odom_rmse_m]=$(kv "$work/ate_odometry.txt" ate_rmse_m 3)
+        row[odom_max_m]=$(kv "$work/ate_odometry.txt" ate_max_m 3)
       else
         status="FAILED: odometry ate (see $work/ate_odometry.txt)"
       fi
@@ -205,6 +226,8 @@ fi
     for cell in "${cells[@]}"; do line+=" $cell |"; done
     printf '%s\n' "$line"
   done
+  printf '\nProfile %s, %s; load average (1, 5, 15 min) %s at the start, %s at the end, %s cores.\n' \
+    "$2" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$load_start" "$(load)" "$(nproc)"
 } >"$OUT/table.md"
 cat "$OUT/table.md"
 exit $failed
