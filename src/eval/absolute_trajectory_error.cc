@@ -11,6 +11,10 @@ bool AteOptions::IsValid(std::string* error) const {
     *error = "max_time_diff_s must be finite and >= 0";
     return false;
   }
+  if (!(interpolate_max_gap_s >= 0.0) || !std::isfinite(interpolate_max_gap_s)) {
+    *error = "interpolate_max_gap_s must be finite and >= 0";
+    return false;
+  }
   return true;
 }
 
@@ -18,14 +22,43 @@ AteOptions ParseAteOptions(common::ConfigReader& reader) {
   AteOptions options;
   reader.Get("max_time_diff_s", &options.max_time_diff_s);
   reader.Get("align", &options.align);
+  reader.Get("planar", &options.planar);
+  reader.Get("interpolate_max_gap_s", &options.interpolate_max_gap_s);
   std::string error;
   if (!options.IsValid(&error)) reader.AddError("max_time_diff_s", error);
   return options;
 }
 
+namespace {
+
+std::vector<PosePair> InterpolateAtGtStamps(const Trajectory& gt, const Trajectory& est,
+                                            double max_gap_s) {
+  std::vector<PosePair> pairs;
+  for (const TimedPose3d& g : gt) {
+    common::Rigid3d pose;
+    if (LookUpPose(est, g.stamp_s, max_gap_s, &pose)) pairs.push_back({g.stamp_s, g.pose, pose});
+  }
+  return pairs;
+}
+
+// Least-squares x, y, yaw of gt = T * est (Umeyama 1991 in two dimensions), lifted to 3D.
+common::Rigid3d AlignPlanar(const Eigen::Matrix3Xd& p_est, const Eigen::Matrix3Xd& p_gt) {
+  const Eigen::Matrix3d T = Eigen::umeyama(Eigen::Matrix2Xd(p_est.topRows<2>()),
+                                           Eigen::Matrix2Xd(p_gt.topRows<2>()),
+                                           /*with_scaling=*/false);
+  const double yaw_rad = std::atan2(T(1, 0), T(0, 0));
+  return common::Rigid3d(Eigen::Vector3d(T(0, 2), T(1, 2), 0.0),
+                         Eigen::Quaterniond(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ())));
+}
+
+}  // namespace
+
 AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptions& options) {
   AteResult result;
-  const std::vector<PosePair> pairs = AssociateByTime(gt, est, options.max_time_diff_s);
+  const std::vector<PosePair> pairs =
+      options.interpolate_max_gap_s > 0.0
+          ? InterpolateAtGtStamps(gt, est, options.interpolate_max_gap_s)
+          : AssociateByTime(gt, est, options.max_time_diff_s);
   if (pairs.empty()) return result;
 
   Eigen::Matrix3Xd p_est(3, pairs.size());
@@ -37,7 +70,9 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   result.unaligned_rmse_m = std::sqrt((p_gt - p_est).colwise().squaredNorm().mean());
 
   // Umeyama needs at least two points to define anything; with one, alignment would zero it.
-  if (options.align && pairs.size() >= 2) {
+  if (options.align && options.planar && pairs.size() >= 2) {
+    result.T_gt_est = AlignPlanar(p_est, p_gt);
+  } else if (options.align && pairs.size() >= 2) {
     const Eigen::Matrix4d T = Eigen::umeyama(p_est, p_gt, /*with_scaling=*/false);
     result.T_gt_est = common::Rigid3d(T.block<3, 1>(0, 3),
                                       Eigen::Quaterniond(Eigen::Matrix3d(T.block<3, 3>(0, 0))));

@@ -236,7 +236,8 @@ bool GmappingPoseFilter::IsEstimate(const char* tag, const CarmenMessage* msg) {
                               std::equal(msg->pose, msg->pose + 3, flaser_pose_);
     const bool zero = msg->times[0] == 0.0 && msg->times[1] == 0.0 &&
                       msg->velocity[0] == 0.0 && msg->velocity[1] == 0.0 && msg->accel == 0.0;
-    estimate = repeats_scan || (previous_ == Previous::kNeff && zero);
+    estimate = repeats_scan || (previous_ == Previous::kNeff && zero && !has_odometry_stream_);
+    if (previous_ == Previous::kOther) ++stream_odometry_lines_;
   }
   previous_ = std::strcmp(tag, "NEFF") == 0 ? Previous::kNeff : Previous::kOther;
   if (msg != nullptr && msg->type == CarmenMessageType::kFlaser) {

@@ -309,6 +309,10 @@ bool CarmenReader::Open(const std::string& path, std::string* error) {
     summary_.range_max_source = param_range_max_m > 0.0 ? "param" : "no_flaser";
   }
 
+  // The time statistics above left out every ODOM after NEFF with zero time and motion; with
+  // an odometry stream those are readings (their stamps, all zero, change no time policy).
+  impl_->gmapping_filter = GmappingPoseFilter(gmapping_filter.stream_odometry_lines() > 1);
+
   if (!impl_->reader.failure().empty() || !impl_->reader.Rewind()) {
     *error = path + ": " + impl_->reader.failure();
     return false;
@@ -413,6 +417,10 @@ bool CarmenReader::Next(CarmenRecord* out, std::string* error) {
       r.scan.ranges_m = std::move(msg.ranges);
       r.scan.intensities = std::move(msg.remissions);
       r.T_base_laser = msg.T_base_laser;
+      r.has_reference_pose = msg.type == CarmenMessageType::kFlaser;
+      if (r.has_reference_pose) {
+        r.reference_pose = common::Rigid2d(msg.pose[0], msg.pose[1], msg.pose[2]);
+      }
     }
     im.newest_stamp_s = std::max(im.newest_stamp_s, p.stamp_s);
     im.pending.push_back(std::move(p));

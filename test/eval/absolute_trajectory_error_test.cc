@@ -86,6 +86,71 @@ TEST(AteTest, AssociationToleranceAndEmptyResult) {
   EXPECT_EQ(ComputeAte(gt, est, loose).trans_m.count, 400);
 }
 
+// A planar path (z = 0, yaw only) that is not symmetric about any line.
+Trajectory PlanarPath() {
+  Trajectory t;
+  for (int i = 0; i < 200; ++i) {
+    const double s = 0.1 * i;
+    const double yaw_rad = 0.4 * s;
+    t.push_back(TimedPose3d{
+        s, common::Rigid3d(Eigen::Vector3d(s + std::cos(yaw_rad), 0.3 * s * s + std::sin(yaw_rad), 0.0),
+                           Eigen::Quaterniond(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ())))});
+  }
+  return t;
+}
+
+TEST(AteTest, PlanarAlignmentRecoversAMotionInThePlane) {
+  const Trajectory gt = PlanarPath();
+  const common::Rigid3d T_est_gt =
+      common::Rigid3d::FromRigid2d(common::Rigid2d(4.0, -3.0, 2.5));
+  AteOptions options;
+  options.planar = true;
+  const AteResult r = ComputeAte(gt, Transformed(gt, T_est_gt), options);
+  EXPECT_EQ(r.trans_m.count, 200);
+  EXPECT_NEAR(r.trans_m.rmse, 0.0, 1e-9);
+  const common::Rigid3d residual = r.T_gt_est * T_est_gt;
+  EXPECT_NEAR(residual.translation().norm(), 0.0, 1e-9);
+  EXPECT_NEAR(residual.rotation().angularDistance(Eigen::Quaterniond::Identity()), 0.0, 1e-9);
+}
+
+TEST(AteTest, PlanarAlignmentDoesNotMirrorThePlane) {
+  // The mirror image (y -> -y) of a path is a half turn about the x axis in 3D, so the SE(3)
+  // fit makes it perfect; no motion in the plane does.
+  const Trajectory gt = PlanarPath();
+  Trajectory mirrored = gt;
+  for (TimedPose3d& p : mirrored) {
+    const Eigen::Vector3d t = p.pose.translation();
+    p.pose = common::Rigid3d(Eigen::Vector3d(t.x(), -t.y(), 0.0), p.pose.rotation().conjugate());
+  }
+  EXPECT_NEAR(ComputeAte(gt, mirrored, AteOptions()).trans_m.rmse, 0.0, 1e-6);
+  AteOptions planar;
+  planar.planar = true;
+  const AteResult r = ComputeAte(gt, mirrored, planar);
+  EXPECT_GT(r.trans_m.rmse, 1.0);
+  EXPECT_NEAR(r.T_gt_est.translation().z(), 0.0, 1e-12);
+}
+
+TEST(AteTest, InterpolatesAnEstimateSampledAtOtherStamps) {
+  // Ground truth at 1 Hz, the estimate (a straight line at constant speed) at 10 Hz, offset by
+  // 0.04 s: nearest association within 0.02 s finds nothing, interpolation is exact.
+  Trajectory gt, est;
+  for (int i = 1; i < 10; ++i) {
+    gt.push_back({1.0 * i, common::Rigid3d::FromRigid2d(common::Rigid2d(2.0 * i, 1.0, 0.0))});
+  }
+  for (int i = 0; i < 100; ++i) {
+    const double s = 0.1 * i + 0.04;
+    est.push_back({s, common::Rigid3d::FromRigid2d(common::Rigid2d(2.0 * s + 0.5, 1.0, 0.0))});
+  }
+  AteOptions options;
+  options.align = false;
+  EXPECT_EQ(ComputeAte(gt, est, options).trans_m.count, 0);
+  options.interpolate_max_gap_s = 0.1;
+  const AteResult r = ComputeAte(gt, est, options);
+  EXPECT_EQ(r.trans_m.count, 9);
+  EXPECT_NEAR(r.trans_m.max, 0.5, 1e-9);
+  EXPECT_NEAR(r.trans_m.rmse, 0.5, 1e-9);
+}
+
 TEST(AteTest, OptionsValidation) {
   std::string error;
   AteOptions options;
@@ -93,6 +158,10 @@ TEST(AteTest, OptionsValidation) {
   options.max_time_diff_s = -1.0;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("max_time_diff_s"), std::string::npos);
+  options = AteOptions();
+  options.interpolate_max_gap_s = -0.1;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("interpolate_max_gap_s"), std::string::npos);
 }
 
 TEST(AteTest, ParseOptions) {

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -236,13 +237,17 @@ TEST(CarmenReaderTest, AllZeroTimestampsAreSynthesizedFromLineOrder) {
 }
 
 TEST(CarmenReaderTest, SaysSoWhenEveryOdomLineIsAGmappingEstimate) {
-  // As in orebro: one ODOM at rest, then after each scan only GMapping's echo of its pose.
+  // As in orebro: one ODOM at rest, then after each scan only GMapping's echo of its pose
+  // (stamped with garbage) and, after some NEFF lines, a pose with zero time and motion a
+  // metre or more from the last scan and centimetres from the next: GMapping's too, as the log
+  // has no odometry stream it could belong to.
   const std::string path = WriteFile(
       "noodom.log",
       "ODOM 0 0 0 0 0 0 0 pippo 0\n"
       "FLASER 2 1 2 0.5 0 0.1 0.5 0 0.1 0 pippo 0\n"
-      "ODOM 0.5 0 0.1 0 0 0 0 pippo 0\n"
+      "ODOM 0.5 0 0.1 0 0 0 6.979 pippo 6.979\n"
       "NEFF 10\n"
+      "ODOM 1.48 0.01 0.2 0 0 0 0 pippo 0\n"
       "FLASER 2 1 2 1.5 0 0.2 1.5 0 0.2 0 pippo 0\n"
       "ODOM 1.5 0 0.2 0 0 0 0 pippo 0\n");
   CarmenOptions options;
@@ -252,8 +257,83 @@ TEST(CarmenReaderTest, SaysSoWhenEveryOdomLineIsAGmappingEstimate) {
   const std::vector<CarmenRecord> records = ReadAll(path, options, &summary, &error);
   ASSERT_EQ(records.size(), 3u) << error;
   EXPECT_EQ(summary.odometry, 1);
-  EXPECT_EQ(summary.gmapping_poses_dropped, 2);
+  EXPECT_EQ(summary.gmapping_poses_dropped, 3);
   EXPECT_NE(summary.ToString().find("NO WHEEL ODOMETRY"), std::string::npos) << summary.ToString();
+  std::remove(path.c_str());
+}
+
+// A freiburg-campus-shaped log: every stamp and velocity 0, a NEFF line after each scan's
+// pose echo, and the wheel odometry (x = 0.1 m per reading, straight ahead) re-based after each
+// scan onto GMapping's pose for that scan, as GMapping prints it.
+std::string ZeroStampNeffLog(int scans, int readings_per_scan) {
+  std::ostringstream log;
+  log.precision(17);
+  common::Rigid2d T_printed_raw;  // identity until the first scan
+  int reading = 0;
+  for (int s = 0; s < scans; ++s) {
+    for (int i = 0; i < readings_per_scan; ++i, ++reading) {
+      const common::Rigid2d printed = T_printed_raw * common::Rigid2d(0.1 * reading, 0.0, 0.0);
+      log << "ODOM " << printed.translation().x() << " " << printed.translation().y() << " "
+          << printed.angle_rad() << " 0 0 0 0 pippo 0\n";
+    }
+    // GMapping's pose for the scan, taken at the last reading: off the odometry a little.
+    const common::Rigid2d raw(0.1 * (reading - 1), 0.0, 0.0);
+    const common::Rigid2d gmapping(raw.translation().x() + 0.05 * (s + 1), 0.02 * (s + 1),
+                                   0.01 * (s + 1));
+    T_printed_raw = gmapping * raw.inverse();
+    std::ostringstream pose;
+    pose.precision(17);
+    pose << gmapping.translation().x() << " " << gmapping.translation().y() << " "
+         << gmapping.angle_rad();
+    log << "FLASER 2 1 2 " << pose.str() << " " << pose.str() << " 0 pippo 0\n"
+        << "ODOM " << pose.str() << " 0 0 0 0 pippo 0\n"
+        << "NEFF 100\n";
+  }
+  return log.str();
+}
+
+TEST(CarmenReaderTest, ZeroStampsAndNeffLinesDropOnlyGmappingsPoses) {
+  const int kScans = 5, kReadings = 4;
+  const std::string path = WriteFile("zero_neff.log", ZeroStampNeffLog(kScans, kReadings));
+  CarmenOptions options;
+  options.range_max_m = 10.0;
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, options, &summary, &error);
+  ASSERT_TRUE(error.empty()) << error;
+  EXPECT_EQ(summary.time_policy, "synthesized");
+  EXPECT_EQ(summary.lasers, kScans);
+  EXPECT_EQ(summary.gmapping_poses_dropped, kScans) << summary.ToString();
+  EXPECT_EQ(summary.odometry, kScans * kReadings) << summary.ToString();
+  // With every re-basing undone the output is the wheel odometry itself: no step lost.
+  int reading = 0;
+  for (const CarmenRecord& r : records) {
+    if (r.kind != CarmenRecord::Kind::kOdometry) continue;
+    EXPECT_NEAR(r.odometry.pose.translation().x(), 0.1 * reading, 1e-9) << "reading " << reading;
+    EXPECT_NEAR(r.odometry.pose.translation().y(), 0.0, 1e-9) << "reading " << reading;
+    EXPECT_NEAR(r.odometry.pose.angle_rad(), 0.0, 1e-9) << "reading " << reading;
+    ++reading;
+  }
+  std::remove(path.c_str());
+}
+
+TEST(CarmenReaderTest, ScansCarryGmappingsPoseAtTheirOutputStamp) {
+  const std::string path = WriteFile("reference.log", kGoodLog);
+  CarmenSummary summary;
+  std::string error;
+  const std::vector<CarmenRecord> records = ReadAll(path, CarmenOptions(), &summary, &error);
+  ASSERT_EQ(records.size(), 5u) << error;
+  // FLASER: the x y theta right after the ranges; the record's stamp is the output stamp.
+  ASSERT_TRUE(records[1].has_reference_pose);
+  EXPECT_DOUBLE_EQ(records[1].reference_pose.translation().x(), 9.0);
+  EXPECT_DOUBLE_EQ(records[1].reference_pose.translation().y(), 9.0);
+  EXPECT_NEAR(std::cos(records[1].reference_pose.angle_rad()), std::cos(9.0), 1e-12);
+  EXPECT_NEAR(std::sin(records[1].reference_pose.angle_rad()), std::sin(9.0), 1e-12);
+  ASSERT_TRUE(records[3].has_reference_pose);
+  EXPECT_DOUBLE_EQ(records[3].reference_pose.translation().x(), 8.0);
+  EXPECT_DOUBLE_EQ(records[3].scan.stamp_s, 1.2);
+  EXPECT_FALSE(records[0].has_reference_pose) << "odometry";
+  EXPECT_FALSE(records[4].has_reference_pose) << "ROBOTLASER1 carries no GMapping pose";
   std::remove(path.c_str());
 }
 

@@ -12,19 +12,23 @@
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
 #include "fusemap/io/stamp_map_file.h"
+#include "fusemap/io/tum_trajectory.h"
 
 namespace {
 
 constexpr char kUsage[] =
     "usage: fusemap_carmen2lcm INPUT OUTPUT.lcm [--skip-bad] [--range-max M]\n"
     "                          [--laser-channel LIDAR] [--odom-channel ODOMETRY]\n"
-    "                          [--stamp-map FILE]\n"
+    "                          [--stamp-map FILE] [--reference-poses FILE.tum]\n"
     "  INPUT          CARMEN log (FLASER, ROBOTLASER1, ODOM lines), plain or .gz\n"
     "  --skip-bad     skip and count malformed lines instead of failing\n"
     "  --range-max M  FLASER no-return threshold in metres (default: detected)\n"
     "  --stamp-map FILE  also write each odometry record's output stamp beside the stamp\n"
     "                 the log printed, so ground truth on the log's clock can be looked up\n"
     "                 in trajectory.tum (fusemap_eval relations --stamp-map)\n"
+    "  --reference-poses FILE.tum  also write GMapping's pose of each FLASER scan at the\n"
+    "                 scan's output stamp (as in fusemap_offline's nodes.tum), to score\n"
+    "                 against with fusemap_eval ate\n"
     "Scans: beam i at -90 deg + i * 180 deg / (N - N%2), i.e. 180/181 beams at 1 deg.\n"
     "Exit codes: 0 converted, 1 bad input (no CARMEN records, a malformed line without\n"
     "--skip-bad, an unreadable file) or a failed write, 2 command-line usage error.\n";
@@ -40,6 +44,7 @@ int UsageError(const std::string& message) {
 int main(int argc, char** argv) {
   fusemap::io::CarmenOptions options;
   std::string laser_channel = "LIDAR", odom_channel = "ODOMETRY", stamp_map_path;
+  std::string reference_path;
   std::string positional[2];
   int n_positional = 0;
   for (int i = 1; i < argc; ++i) {
@@ -62,6 +67,8 @@ int main(int argc, char** argv) {
       odom_channel = argv[++i];
     } else if (arg == "--stamp-map" && has_value) {
       stamp_map_path = argv[++i];
+    } else if (arg == "--reference-poses" && has_value) {
+      reference_path = argv[++i];
     } else if (!arg.empty() && arg[0] != '-' && n_positional < 2) {
       positional[n_positional++] = arg;
     } else {
@@ -103,6 +110,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   fusemap::io::CarmenRecord record;
+  fusemap::eval::Trajectory reference;
   while (reader.Next(&record, &error)) {
     bool ok = false;
     if (record.kind == fusemap::io::CarmenRecord::Kind::kLaser) {
@@ -118,6 +126,10 @@ int main(int argc, char** argv) {
     if (!ok) {
       error = positional[1] + ": write failed";
       break;
+    }
+    if (record.has_reference_pose) {
+      reference.push_back({record.scan.stamp_s,
+                           fusemap::common::Rigid3d::FromRigid2d(record.reference_pose)});
     }
     // Odometry only: a relation's pose is looked up in trajectory.tum, sampled at the odometry.
     if (!stamp_map_path.empty() && record.kind == fusemap::io::CarmenRecord::Kind::kOdometry &&
@@ -135,10 +147,14 @@ int main(int argc, char** argv) {
   if (!stamp_map_path.empty() && !stamp_map.Close(&close_error) && error.empty()) {
     error = close_error;
   }
+  if (error.empty() && !reference_path.empty()) {
+    fusemap::io::WriteTumTrajectoryFile(reference_path, reference, &error);
+  }
   if (!error.empty()) {
     std::cerr << error << "\n";
     std::remove(positional[1].c_str());  // no half-converted output
     if (!stamp_map_path.empty()) std::remove(stamp_map_path.c_str());
+    if (!reference_path.empty()) std::remove(reference_path.c_str());
     return 1;
   }
   const fusemap::io::CarmenSummary& s = reader.summary();
@@ -153,6 +169,9 @@ int main(int argc, char** argv) {
   }
   std::cout << s.ToString() << " wrote=" << positional[1];
   if (!stamp_map_path.empty()) std::cout << " stamp_map=" << stamp_map_path;
+  if (!reference_path.empty()) {
+    std::cout << " reference_poses=" << reference.size() << " " << reference_path;
+  }
   std::cout << "\n";
   return 0;
 }

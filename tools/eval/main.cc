@@ -38,9 +38,13 @@ constexpr char kRelationsUsage[] =
     "Last line: trans_mean_m=... trans_std_m=... rot_mean_deg=... rot_std_deg=...\n";
 
 constexpr char kAteUsage[] =
-    "usage: fusemap_eval ate --gt A.tum --est B.tum [--no-align] [--max-time-diff S]\n"
+    "usage: fusemap_eval ate --gt A.tum --est B.tum [--no-align] [--se2] [--max-time-diff S]\n"
+    "                        [--interpolate S]\n"
     "  --no-align          do not rigidly align the estimate to the ground truth\n"
+    "  --se2               align in the plane only (x, y, yaw; never mirrors the plane)\n"
     "  --max-time-diff S   association tolerance between stamps (default 0.02)\n"
+    "  --interpolate S     sample the estimate at every gt stamp, interpolating between its\n"
+    "                      poses (nearest within S); for estimates at other stamps (odometry)\n"
     "Last line: ate_rmse_m=...\n";
 
 constexpr char kRpeUsage[] =
@@ -183,7 +187,8 @@ int RunAte(int argc, char** argv) {
   Args args;
   std::string error;
   eval::AteOptions options;
-  if (!ParseArgs(argc, argv, {"--gt", "--est", "--max-time-diff"}, {"--no-align"}, &args, &error)) {
+  if (!ParseArgs(argc, argv, {"--gt", "--est", "--max-time-diff", "--interpolate"},
+                 {"--no-align", "--se2"}, &args, &error)) {
     return Fail(error, kAteUsage);
   }
   if (args.help) {
@@ -191,15 +196,17 @@ int RunAte(int argc, char** argv) {
     return 0;
   }
   options.align = args.flags.count("--no-align") == 0;
+  options.planar = args.flags.count("--se2") > 0;
   eval::Trajectory gt, est;
   if (!GetDouble(args, "--max-time-diff", &options.max_time_diff_s, &error) ||
+      !GetDouble(args, "--interpolate", &options.interpolate_max_gap_s, &error) ||
       !options.IsValid(&error)) {
     return Fail(error, kAteUsage);
   }
   if (const int status = ReadPair(args, kAteUsage, &gt, &est); status != 0) return status;
   const eval::AteResult r = eval::ComputeAte(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu associated=%d aligned=%s\n", gt.size(), est.size(),
-              r.trans_m.count, options.align ? "yes" : "no");
+              r.trans_m.count, !options.align ? "no" : (options.planar ? "se2" : "se3"));
   if (r.trans_m.count == 0) {
     std::fprintf(stderr, "fusemap_eval: no estimated pose within --max-time-diff of the gt\n");
     return 1;

@@ -15,6 +15,15 @@ struct AteOptions {
   double max_time_diff_s = 0.02;
   // Rigidly align the estimate to the ground truth (SE(3), no scale) before measuring.
   bool align = true;
+  // Align in the plane only (x, y, yaw; SE(2)). For a planar robot an SE(3) fit may turn the
+  // plane over (a half turn about an in-plane axis mirrors it) when that fits a poor estimate
+  // better; a mirrored map is not a rigid motion of the robot's world.
+  bool planar = false;
+  // 0: each estimated pose is associated with the nearest ground-truth stamp (both sampled at
+  // the same instants, like nodes against reference poses). > 0: the estimate is sampled at
+  // every ground-truth stamp by interpolation (LookUpPose with this maximum gap), for an
+  // estimate sampled elsewhere, like odometry against scan poses.
+  double interpolate_max_gap_s = 0.0;
 
   bool IsValid(std::string* error) const;
 };

@@ -63,17 +63,30 @@ bool ParseCarmenMessage(const std::vector<char*>& tokens, bool complete, CarmenM
                         std::string* reason);
 
 // GMapping's gfs output interleaves its own pose estimates as ODOM lines: right after each
-// FLASER (repeating that scan's pose) and, in orebro, after NEFF with zero time and motion.
-// Neither is wheel odometry. Feed every non-empty line in order.
+// FLASER, repeating that scan's pose, and, in a log without wheel odometry (orebro), after some
+// NEFF lines with zero time and motion. Neither is wheel odometry. In a log with an odometry
+// stream the ODOM after NEFF is that stream's next reading, even where every line has zero
+// time and motion (freiburg-campus); dropping it loses a step of odometry per scan. Feed every
+// non-empty line in order.
 class GmappingPoseFilter {
  public:
+  // has_odometry_stream: the log has ODOM lines besides the ones right after FLASER or NEFF
+  // (see stream_odometry_lines(), counted by a first pass over the log).
+  explicit GmappingPoseFilter(bool has_odometry_stream = false)
+      : has_odometry_stream_(has_odometry_stream) {}
+
   // msg: the parsed line, or nullptr for other and malformed lines.
   bool IsEstimate(const char* tag, const CarmenMessage* msg);
+  // ODOM lines seen so far right after neither a FLASER nor a NEFF line. A log without
+  // wheel odometry has at most one (orebro: the robot at rest before the first scan).
+  int stream_odometry_lines() const { return stream_odometry_lines_; }
 
  private:
   enum class Previous { kOther, kFlaser, kNeff };
+  bool has_odometry_stream_;
   Previous previous_ = Previous::kOther;
   double flaser_pose_[3] = {0.0, 0.0, 0.0};
+  int stream_odometry_lines_ = 0;
 };
 
 }  // namespace io

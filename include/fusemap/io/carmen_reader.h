@@ -47,9 +47,12 @@ struct CarmenRecord {
   // raw log is on this clock (see eval::StampMap).
   double log_stamp_s = 0.0;
   double log_stamp_resolution_s = 0.0;
-  // kLaser: beams in the laser frame; stamp_s is the output time. The FLASER pose fields
-  // (GMapping's estimate) are deliberately not exposed.
+  // kLaser: beams in the laser frame; stamp_s is the output time.
   sensor::LaserScan scan;
+  // kLaser from FLASER: GMapping's pose estimate for this scan (the x y theta right after the
+  // ranges). A reference layout to score against, never an input to the SLAM.
+  bool has_reference_pose = false;
+  common::Rigid2d reference_pose;
   common::Rigid2d T_base_laser;  // from ROBOTLASER1's laser and robot poses; identity for FLASER
   // kOdometry: raw wheel odometry with its measured velocities.
   sensor::OdometryData odometry;
