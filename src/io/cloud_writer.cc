@@ -47,6 +47,22 @@ std::string EmptyCloudHeader(const cloud::ColorCloud& cloud, bool ply) {
   return pcl::PCDWriter().generateHeaderBinary(fields, origin, orientation) + "DATA binary\n";
 }
 
+// Inner occupancy, pruning, then the file: .bt (writeBinary, occupancy only) or .ot (write, the
+// full tree with colours). octomap dereferences the root in updateInnerOccupancy: an empty
+// cloud has none, and its tree is written as it is.
+template <typename Tree>
+bool FinishAndWriteTree(Tree* tree, bool binary, const std::string& path, std::string* error) {
+  if (tree->getRoot() != nullptr) {
+    tree->updateInnerOccupancy();
+    tree->prune();
+  }
+  std::ostringstream bytes;
+  if (!(binary ? tree->writeBinary(bytes) : tree->write(bytes))) {
+    return Fail(error, "failed to encode OctoMap " + path);
+  }
+  return WriteFileAtomically(path, bytes.str(), error);
+}
+
 }  // namespace
 
 bool WriteCloudPly(const std::string& path, const cloud::ColorCloud& cloud, std::string* error) {
@@ -118,14 +134,7 @@ bool WriteOctoMaps(const cloud::ColorCloud& cloud_map, double resolution_m,
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) continue;
       tree.updateNode(octomap::point3d(p.x, p.y, p.z), /*occupied=*/true, /*lazy_eval=*/true);
     }
-    // ColorOcTree (and OcTree) dereference the root here: an empty cloud has none.
-    if (tree.getRoot() != nullptr) {
-      tree.updateInnerOccupancy();
-      tree.prune();
-    }
-    std::ostringstream bytes;
-    if (!tree.writeBinary(bytes)) return Fail(error, "failed to encode OctoMap " + bt_path);
-    if (!WriteFileAtomically(bt_path, bytes.str(), error)) return false;
+    if (!FinishAndWriteTree(&tree, /*binary=*/true, bt_path, error)) return false;
   }
   if (!ot_path.empty()) {
     octomap::ColorOcTree tree(resolution_m);
@@ -151,14 +160,8 @@ bool WriteOctoMaps(const cloud::ColorCloud& cloud_map, double resolution_m,
                         static_cast<uint8_t>((sum.g + sum.n / 2) / sum.n),
                         static_cast<uint8_t>((sum.b + sum.n / 2) / sum.n));
     }
-    // Also sets inner nodes' colours to their children's average.
-    if (tree.getRoot() != nullptr) {
-      tree.updateInnerOccupancy();
-      tree.prune();
-    }
-    std::ostringstream bytes;
-    if (!tree.write(bytes)) return Fail(error, "failed to encode OctoMap " + ot_path);
-    if (!WriteFileAtomically(ot_path, bytes.str(), error)) return false;
+    // FinishAndWriteTree also sets inner nodes' colours to their children's average.
+    if (!FinishAndWriteTree(&tree, /*binary=*/false, ot_path, error)) return false;
   }
   return true;
 }

@@ -57,8 +57,8 @@ struct HealthReport {
     int64_t received = 0;
     int64_t dropped = 0;
     int64_t malformed = 0;
-    int64_t skipped = 0;
     int queue_depth = 0;
+    int64_t skipped = 0;  // after --resume: already in the checkpoint
   };
   std::vector<Channel> channels;
   LatencyWindow::Summary latency;
