@@ -2,6 +2,7 @@
 
 #include <octomap/ColorOcTree.h>
 #include <octomap/OcTree.h>
+#include <pcl/conversions.h>
 #include <pcl/exceptions.h>
 #include <pcl/io/pcd_io.h>
 #include <pcl/io/ply_io.h>
@@ -101,12 +102,29 @@ bool WriteCloudPcd(const std::string& path, const cloud::ColorCloud& cloud, std:
       error);
 }
 
+namespace {
+
+// PCL 1.13's fromPCLPointCloud2 (which loadPLYFile/loadPCDFile into a typed cloud call) takes
+// &cloud[0] of the resized cloud even when it has no points: undefined behaviour, UBSan's
+// "reference binding to null pointer" at conversions.h:178 on reading an empty file.
+void FromBlob(const pcl::PCLPointCloud2& blob, cloud::ColorCloud* cloud) {
+  if (static_cast<uint64_t>(blob.width) * blob.height == 0) {
+    cloud->clear();
+    return;
+  }
+  pcl::fromPCLPointCloud2(blob, *cloud);
+}
+
+}  // namespace
+
 bool ReadCloudPly(const std::string& path, cloud::ColorCloud* cloud, std::string* error) {
   if (!CanRead(path, error) || !CheckPlyFileSize(path, error)) return false;
   try {
-    if (pcl::io::loadPLYFile(path, *cloud) != 0) {
+    pcl::PCLPointCloud2 blob;
+    if (pcl::io::loadPLYFile(path, blob) != 0) {
       return Fail(error, path + ": not a readable PLY point cloud");
     }
+    FromBlob(blob, cloud);
   } catch (const pcl::PCLException& e) {
     return Fail(error, path + ": " + e.what());
   }
@@ -116,9 +134,11 @@ bool ReadCloudPly(const std::string& path, cloud::ColorCloud* cloud, std::string
 bool ReadCloudPcd(const std::string& path, cloud::ColorCloud* cloud, std::string* error) {
   if (!CanRead(path, error)) return false;
   try {
-    if (pcl::io::loadPCDFile(path, *cloud) != 0) {
+    pcl::PCLPointCloud2 blob;
+    if (pcl::io::loadPCDFile(path, blob) != 0) {
       return Fail(error, path + ": not a readable PCD point cloud");
     }
+    FromBlob(blob, cloud);
   } catch (const pcl::PCLException& e) {
     return Fail(error, path + ": " + e.what());
   }
