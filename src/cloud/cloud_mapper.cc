@@ -9,10 +9,6 @@ namespace fusemap {
 namespace cloud {
 namespace {
 
-// Below this a submap is considered not to have moved: re-posing costs its whole region.
-constexpr double kMovedTranslationM = 1e-6;
-constexpr double kMovedAngleRad = 1e-7;
-
 common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
   const auto& xyz = options.T_base_camera_xyz_m;
   const auto& rpy = options.T_base_camera_rpy_deg;
@@ -21,11 +17,6 @@ common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
       Eigen::AngleAxisd(common::DegToRad(rpy[1]), Eigen::Vector3d::UnitY()) *
       Eigen::AngleAxisd(common::DegToRad(rpy[0]), Eigen::Vector3d::UnitX());
   return common::Rigid3d(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), rotation);
-}
-
-bool Moved(const common::Rigid2d& a, const common::Rigid2d& b) {
-  return (a.translation() - b.translation()).norm() > kMovedTranslationM ||
-         std::abs(common::NormalizeAngle(a.angle_rad() - b.angle_rad())) > kMovedAngleRad;
 }
 
 }  // namespace
@@ -84,7 +75,7 @@ void CloudMapper::AddLocalPose(double stamp_s, const common::Rigid2d& T_local_ba
   bindings_.push_back({stamp_s, submap_id, T_local_submap});
   if (T_map_submaps_.count(submap_id) == 0) {
     // Until global SLAM reports it, a new submap sits where local SLAM put it; the next
-    // UpdateSubmapPoses moves it, and its clouds with it.
+    // PlaceSubmaps moves it, and its clouds with it.
     T_map_submaps_[submap_id] = T_local_submap;
     binder_.SetSubmapPose(submap_id, common::Rigid3d::FromRigid2d(T_local_submap));
   }
@@ -97,17 +88,17 @@ void CloudMapper::AddLocalPose(double stamp_s, const common::Rigid2d& T_local_ba
   ProcessPending();
 }
 
-void CloudMapper::UpdateSubmapPoses(const std::vector<common::Rigid2d>& T_map_submaps) {
+void CloudMapper::PlaceSubmaps(const std::vector<SubmapPose2d>& placements) {
   std::vector<std::pair<int, common::Rigid3d>> moved;
-  for (size_t i = 0; i < T_map_submaps.size(); ++i) {
-    const int id = static_cast<int>(i);
-    const auto it = T_map_submaps_.find(id);
+  for (const SubmapPose2d& placement : placements) {
+    const auto it = T_map_submaps_.find(placement.submap);
     if (it == T_map_submaps_.end()) {
-      T_map_submaps_[id] = T_map_submaps[i];
-      binder_.SetSubmapPose(id, common::Rigid3d::FromRigid2d(T_map_submaps[i]));
-    } else if (Moved(it->second, T_map_submaps[i])) {
-      it->second = T_map_submaps[i];
-      moved.emplace_back(id, common::Rigid3d::FromRigid2d(T_map_submaps[i]));
+      T_map_submaps_[placement.submap] = placement.T_map_submap;
+      binder_.SetSubmapPose(placement.submap,
+                            common::Rigid3d::FromRigid2d(placement.T_map_submap));
+    } else {
+      it->second = placement.T_map_submap;
+      moved.emplace_back(placement.submap, common::Rigid3d::FromRigid2d(placement.T_map_submap));
     }
   }
   if (!moved.empty()) binder_.OnSubmapsMoved(moved);

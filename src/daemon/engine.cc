@@ -43,32 +43,33 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
   } else {
     executor_ = std::make_unique<common::InlineExecutor>();
   }
-  builder_ = std::make_unique<pose_graph::MapBuilder2D>(slam_.map_builder, executor_.get());
-  ConnectBuilder();
+  session_ = std::make_unique<session::SlamSession>(slam_, executor_.get());
+  session_->SetCloudSink(
+      [this](session::CloudPoseUpdate&& update) { cloud_poses_.Push(std::move(update)); });
+  ConnectSession();
   intake_.set_decode_rgbd(slam_.cloud.enabled);
 }
 
-void Engine::ConnectBuilder() {
-  builder_->pose_graph().AddSubmapsMovedCallback([this](const std::vector<pose_graph::SubmapMove>&) {
-    OutputEvent event;
-    event.kind = OutputEvent::Kind::kSubmapsMoved;
-    submaps_moved_ = true;
-    outputs_.Push(std::move(event));
-  });
+void Engine::ConnectSession() {
+  // Only a wake-up for the publisher: the cloud learns what moved from the session.
+  session_->builder().pose_graph().AddSubmapsMovedCallback(
+      [this](const std::vector<pose_graph::SubmapMove>&) {
+        OutputEvent event;
+        event.kind = OutputEvent::Kind::kSubmapsMoved;
+        outputs_.Push(std::move(event));
+      });
 }
 
 void Engine::Restore(const pose_graph::MapBuilderState2D& state,
                      std::vector<sensor::OdometryData> odometry) {
   std::lock_guard<std::mutex> lock(finish_mutex_);
   assert(!started_);
-  builder_ = pose_graph::MapBuilder2D::Restore(slam_.map_builder, executor_.get(), state);
-  ConnectBuilder();
+  session_->Restore(state, std::move(odometry));
+  ConnectSession();
   // A replay restarted from its beginning must not be mapped again: each channel skips what
   // the checkpoint already holds (odometry: its record; the rest: up to the last node).
   const double state_s = LastStateStamp(state);
-  double odometry_s = !odometry.empty() ? odometry.back().stamp_s
-                      : archive_       ? archive_->mark().last_odometry_stamp_s
-                                       : -std::numeric_limits<double>::infinity();
+  double odometry_s = session_->last_odometry_stamp_s();
   if (!(odometry_s > -std::numeric_limits<double>::infinity())) odometry_s = state_s;
   if (state_s > -std::numeric_limits<double>::infinity()) {
     for (InputChannel channel : {kLidarChannel, kImuChannel, kRgbdChannel}) {
@@ -77,7 +78,6 @@ void Engine::Restore(const pose_graph::MapBuilderState2D& state,
     intake_.SetResumePoint(kOdometryChannel, odometry_s);
   }
   last_stamp_s_ = std::max(0.0, state_s);
-  odometry_ = std::move(odometry);
 }
 
 Engine::~Engine() { Finish(); }
@@ -92,7 +92,9 @@ void Engine::Start() {
   if (started_) return;
   started_ = true;
   last_checkpoint_ = std::chrono::steady_clock::now();
-  if (slam_.cloud.enabled) cloud_worker_ = std::make_unique<CloudWorker>(slam_.cloud, cloud_publisher_);
+  if (session_->cloud_stage() != nullptr) {
+    cloud_worker_ = std::make_unique<CloudWorker>(session_->cloud_stage(), cloud_publisher_);
+  }
   slam_thread_ = std::thread([this] { RunLocalSlam(); });
   publisher_thread_ = std::thread([this] { RunPublisher(); });
   rgbd_thread_ = std::thread([this] { RunRgbd(); });
@@ -105,7 +107,7 @@ void Engine::Finish() {
   intake_.Close();
   if (!started_) {
     // Never started: nothing queued was processed; still leave a consistent builder behind.
-    builder_->Finish();
+    session_->builder().Finish();
     return;
   }
   slam_thread_.join();
@@ -116,8 +118,7 @@ void Engine::Finish() {
 
 void Engine::Process(SensorMessage& message) {
   if (auto* scan = std::get_if<sensor::LaserScan>(&message.data)) {
-    const auto pose = builder_->AddScan(*scan);
-    ForwardToCloud(scan->stamp_s, pose ? &*pose : nullptr);
+    const auto pose = session_->AddScan(*scan);
     ++scans_processed_;
     last_stamp_s_ = scan->stamp_s;
     if (pose) {
@@ -128,16 +129,9 @@ void Engine::Process(SensorMessage& message) {
       outputs_.Push(std::move(event));
     }
   } else if (auto* odometry = std::get_if<sensor::OdometryData>(&message.data)) {
-    // As fusemap_offline: odometry that goes back in time is skipped, the rest recorded for
-    // the densified trajectory. (Intake already rejects those; this keeps the two paths equal.)
-    const double last_s = !odometry_.empty() ? odometry_.back().stamp_s
-                          : archive_               ? archive_->mark().last_odometry_stamp_s
-                                                   : -std::numeric_limits<double>::infinity();
-    if (odometry->stamp_s < last_s) return;
-    odometry_.push_back(*odometry);
-    builder_->AddOdometry(*odometry);
+    session_->AddOdometry(*odometry);
   } else if (auto* imu = std::get_if<sensor::ImuData>(&message.data)) {
-    builder_->AddImu(*imu);
+    session_->AddImu(*imu);
   }
 }
 
@@ -146,32 +140,9 @@ void Engine::RunLocalSlam() {
     Process(*message);
     MaybeCheckpoint(false);
   }
-  builder_->Finish();
-  if (slam_.cloud.enabled) {
-    cloud_seen_submaps_ = -1;  // the final optimisation's poses
-    ForwardToCloud(last_stamp_s_, nullptr);
-  }
+  session_->Finish();  // the cloud's last update goes through cloud_poses_
   cloud_poses_.Close();
   MaybeCheckpoint(true);
-}
-
-void Engine::ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result) {
-  if (!slam_.cloud.enabled) return;
-  CloudPoseMessage message;
-  const int submaps = builder_->pose_graph().stats().submaps;
-  if (submaps != cloud_seen_submaps_ || submaps_moved_.exchange(false)) {
-    cloud_seen_submaps_ = submaps;
-    message.T_map_submaps = builder_->pose_graph().Snapshot()->T_map_submaps;
-  }
-  if (result != nullptr && result->submap_id >= 0) {
-    message.stamp_s = stamp_s;
-    message.submap_id = result->submap_id;
-    message.T_local_tracking = result->T_local_tracking;
-    message.T_local_submap = result->T_local_submap;
-  }
-  if (message.submap_id >= 0 || !message.T_map_submaps.empty()) {
-    cloud_poses_.Push(std::move(message));
-  }
 }
 
 void Engine::MaybeCheckpoint(bool force) {
@@ -183,33 +154,19 @@ void Engine::MaybeCheckpoint(bool force) {
   }
   last_checkpoint_ = now;
   executor_->WaitIdle();
-  ArchiveSettled();
-  RunRecord record;
-  record.odometry = &odometry_;
-  if (archive_) record.archive = &archive_->mark();
   std::string error;
-  if (!checkpointer_->Save(*builder_, record, &error)) {
-    ++checkpoint_failures_;
-    if (log_ != nullptr) log_->Report("checkpoint", error);
-  }
-}
-
-void Engine::ArchiveSettled() {
-  if (!archive_) return;
-  // Nodes leave the graph only once they are on disk: a failed append (a full disk) keeps
-  // them, and the odometry, in memory for the next try.
-  const auto nodes = builder_->pose_graph().TrimmedNodes();
-  std::string error;
-  if (!archive_->Append(nodes, &odometry_, &error)) {
+  if (!session_->ArchiveSettled(&error)) {
     // Health counts it with the checkpoints: both are the run's state not reaching the disk.
     ++checkpoint_failures_;
     if (log_ != nullptr) log_->Report("trajectory archive", error);
-    return;
   }
-  std::vector<int> indices;
-  indices.reserve(nodes.size());
-  for (const auto& node : nodes) indices.push_back(node.node);
-  builder_->pose_graph().RemoveTrimmedNodes(indices);
+  RunRecord record;
+  record.odometry = &session_->odometry();
+  if (session_->archive() != nullptr) record.archive = &session_->archive()->mark();
+  if (!checkpointer_->Save(session_->builder(), record, &error)) {
+    ++checkpoint_failures_;
+    if (log_ != nullptr) log_->Report("checkpoint", error);
+  }
 }
 
 void Engine::RunRgbd() {
@@ -222,8 +179,8 @@ void Engine::RunRgbd() {
   }
   // Poses first, then at most one frame: a frame waits in the mapper for the pose after it.
   const auto take_poses = [this](Clock::time_point deadline) {
-    while (auto message = cloud_poses_.PopUntil(deadline)) {
-      cloud_worker_->AddPoseMessage(*message);
+    while (auto update = cloud_poses_.PopUntil(deadline)) {
+      cloud_worker_->AddPoseUpdate(*update);
       deadline = Clock::now() - kRgbdPoll;  // only what is already queued
     }
   };
@@ -244,9 +201,9 @@ void Engine::RunRgbd() {
 }
 
 void Engine::PublishSubmapsAndLoops(double stamp_s) {
-  const auto snapshot = builder_->pose_graph().Snapshot();
+  const auto snapshot = session_->builder().pose_graph().Snapshot();
   publisher_->PublishSubmapList(stamp_s, *snapshot);
-  const auto stats = builder_->pose_graph().stats();
+  const auto stats = session_->builder().pose_graph().stats();
   if (stats.loop_closures_found > published_loop_closures_) {
     publisher_->PublishLoopClosure(stamp_s, stats.loop_closures_found - published_loop_closures_,
                                    stats, stats.nodes - 1);
@@ -303,7 +260,7 @@ HealthReport Engine::Health() const {
   report.channels = intake_.ChannelHealth();
   report.latency = latency_.Summarize();
   report.rss_bytes = ResidentMemoryBytes();
-  const auto stats = builder_->pose_graph().stats();
+  const auto stats = session_->builder().pose_graph().stats();
   report.nodes = stats.nodes - stats.trimmed_nodes;
   report.submaps = stats.submaps - stats.trimmed_submaps;
   report.constraints = stats.constraints;
@@ -317,15 +274,9 @@ HealthReport Engine::Health() const {
 }
 
 bool Engine::WriteOutputs(const std::string& dir, std::string* error,
-                          io::RunOutputsReport* report) const {
-  io::RunOutputs run;
-  run.builder = builder_.get();
-  run.odometry = &odometry_;
-  run.map_resolution_m = slam_.map_builder.local_slam.submaps.resolution_m;
-  run.cloud_mapper = cloud_mapper();
-  run.archive = archive_.get();
-  io::RunOutputsReport local_report;
-  return io::WriteRunOutputs(run, dir, report != nullptr ? report : &local_report, error);
+                          session::RunOutputsReport* report) const {
+  session::RunOutputsReport local_report;
+  return session_->WriteOutputs(dir, report != nullptr ? report : &local_report, error);
 }
 
 }  // namespace daemon

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <type_traits>
 #include <utility>
 
 #include "fusemap/io/lcm_conversions.h"
@@ -13,6 +12,12 @@
 namespace fusemap {
 namespace daemon {
 namespace {
+
+double& StampOf(std::variant<SensorMessage, RgbdMessage>& message) {
+  if (auto* rgbd = std::get_if<RgbdMessage>(&message)) return rgbd->frame.stamp_s;
+  return std::visit([](auto& data) -> double& { return data.stamp_s; },
+                    std::get<SensorMessage>(message).data);
+}
 
 double SystemClockSeconds() {
   return std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch())
@@ -28,7 +33,7 @@ Intake::Intake(const io::SlamConfig& slam, const DaemonOptions& options, Overflo
       log_(log),
       wall_clock_s_(wall_clock_s ? std::move(wall_clock_s) : WallClock(SystemClockSeconds)),
       names_{slam.channels.lidar, slam.channels.odometry, slam.channels.imu, slam.channels.rgbd},
-      stamp_filter_(options.stamp_filter(), kNumInputChannels, kLidarChannel),
+      stamp_gate_(options.stamp_filter(), kNumInputChannels, kLidarChannel, StampOf),
       sensor_queue_(options.sensor_queue_size, policy,
                     [this](const SensorMessage& m) { ++counters_[m.channel].dropped; }),
       rgbd_queue_(options.rgbd_queue_size, policy,
@@ -40,70 +45,49 @@ bool Intake::Reject(InputChannel channel, const std::string& kind, const std::st
   return false;
 }
 
-template <typename Message>
-bool Intake::CheckStamp(InputChannel channel, double* stamp_s, Message* message) {
+bool Intake::Admit(InputChannel channel, AnyMessage message) {
   const double now_s = wall_clock_s_();
-  if (*stamp_s > now_s + options_.max_future_s) {
+  const double stamp_s = StampOf(message);
+  if (stamp_s > now_s + options_.max_future_s) {
     char buffer[160];
     std::snprintf(buffer, sizeof(buffer), "stamp %.6f is %.1f s ahead of the clock; dropped",
-                  *stamp_s, *stamp_s - now_s);
+                  stamp_s, stamp_s - now_s);
     return Reject(channel, "timestamp from the future", buffer);
   }
   using Verdict = sensor::StampFilter::Verdict;
-  using Held = sensor::StampFilter::Held;
-  const sensor::StampFilter::Decision decision = stamp_filter_.Check(channel, *stamp_s);
+  auto passed = stamp_gate_.Offer(channel, message);
+  const sensor::StampFilter::Decision& decision = passed.decision;
   if (decision.time_reset) {
     ++time_resets_;
     if (log_ != nullptr) log_->Report(names_[channel] + ": time reset", decision.reason);
   }
-  std::optional<Message> held;
-  if constexpr (std::is_same_v<Message, RgbdMessage>) {
-    held = std::move(held_rgbd_);
-    held_rgbd_.reset();
-  } else {
-    held = std::move(held_[channel]);
-    held_[channel].reset();
-  }
-  if (decision.held == Held::kRelease && held) {
+  if (passed.released) {
     // Counted as malformed while held; the new time base is confirmed.
     --counters_[channel].malformed;
-    if constexpr (std::is_same_v<Message, RgbdMessage>) {
-      held->frame.stamp_s = decision.held_stamp_s;
-    } else {
-      std::visit([&](auto& data) { data.stamp_s = decision.held_stamp_s; }, held->data);
-    }
-    Enqueue(channel, std::move(*held));
-  } else if (decision.held == Held::kDrop && log_ != nullptr) {
+    Enqueue(channel, std::move(*passed.released));
+  } else if (decision.held == sensor::StampFilter::Held::kDrop && log_ != nullptr) {
     log_->Report(names_[channel] + ": timestamp jump", decision.held_reason);
   }
+  if (passed.pass) return Enqueue(channel, std::move(message));
   switch (decision.verdict) {
-    case Verdict::kAccept:
-      *stamp_s = decision.stamp_s;
-      return true;
     case Verdict::kSkip:
       ++counters_[channel].skipped;
       return false;
     case Verdict::kHold:
       Reject(channel, decision.kind, decision.reason);
-      if constexpr (std::is_same_v<Message, RgbdMessage>) {
-        held_rgbd_ = std::move(*message);
-      } else {
-        held_[channel] = std::move(*message);
-      }
       return false;
+    case Verdict::kAccept:
     case Verdict::kReject:
       break;
   }
   return Reject(channel, decision.kind, decision.reason);
 }
 
-bool Intake::Enqueue(InputChannel channel, SensorMessage message) {
-  message.channel = channel;
-  return sensor_queue_.Push(std::move(message));
-}
-
-bool Intake::Enqueue(InputChannel, RgbdMessage message) {
-  return rgbd_queue_.Push(std::move(message));
+bool Intake::Enqueue(InputChannel channel, AnyMessage message) {
+  if (auto* rgbd = std::get_if<RgbdMessage>(&message)) return rgbd_queue_.Push(std::move(*rgbd));
+  SensorMessage& sensor_message = std::get<SensorMessage>(message);
+  sensor_message.channel = channel;
+  return sensor_queue_.Push(std::move(sensor_message));
 }
 
 bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
@@ -137,10 +121,7 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
                           std::to_string(scan.ranges_m.size()) + " ranges are NaN/inf; dropped");
       }
       message.data = std::move(scan);
-      if (!CheckStamp(input, &std::get<sensor::LaserScan>(message.data).stamp_s, &message)) {
-        return false;
-      }
-      return Enqueue(input, std::move(message));
+      return Admit(input, std::move(message));
     }
     case kOdometryChannel: {
       sensor::OdometryData odometry;
@@ -148,19 +129,13 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
         return Reject(input, "undecodable odometry", error);
       }
       message.data = odometry;
-      if (!CheckStamp(input, &std::get<sensor::OdometryData>(message.data).stamp_s, &message)) {
-        return false;
-      }
-      return Enqueue(input, std::move(message));
+      return Admit(input, std::move(message));
     }
     case kImuChannel: {
       sensor::ImuData imu;
       if (!io::DecodeImu(data, size, &imu, &error)) return Reject(input, "undecodable IMU", error);
       message.data = imu;
-      if (!CheckStamp(input, &std::get<sensor::ImuData>(message.data).stamp_s, &message)) {
-        return false;
-      }
-      return Enqueue(input, std::move(message));
+      return Admit(input, std::move(message));
     }
     case kRgbdChannel: {
       if (!decode_rgbd_) return false;
@@ -177,8 +152,7 @@ bool Intake::OnMessage(const std::string& channel, const void* data, int size) {
                             std::to_string(options_.max_image_pixels) + "; dropped");
         }
       }
-      if (!CheckStamp(input, &rgbd.frame.stamp_s, &rgbd)) return false;
-      return Enqueue(input, std::move(rgbd));
+      return Admit(input, std::move(rgbd));
     }
     case kNumInputChannels:
       break;

@@ -392,6 +392,25 @@ void PoseGraph2D::AddSubmapsMovedCallback(SubmapsMovedCallback callback) {
   callbacks_.push_back(std::move(callback));
 }
 
+std::vector<SubmapPlacement> PoseGraph2D::TakeSubmapPlacements() {
+  std::lock_guard<std::mutex> lock(mutex_);
+  std::vector<SubmapPlacement> placements;
+  // Poses change only in solves; without one, only new submaps need placing.
+  const size_t first = solve_count_ != placed_solve_count_ ? 0 : T_map_submaps_placed_.size();
+  placed_solve_count_ = solve_count_;
+  for (size_t i = first; i < T_map_submaps_.size(); ++i) {
+    const int submap = static_cast<int>(i);
+    if (i >= T_map_submaps_placed_.size()) {
+      T_map_submaps_placed_.push_back(T_map_submaps_[i]);
+      placements.push_back({submap, T_map_submaps_[i], true});
+    } else if (SubmapMoved(T_map_submaps_placed_[i], T_map_submaps_[i])) {
+      T_map_submaps_placed_[i] = T_map_submaps_[i];
+      placements.push_back({submap, T_map_submaps_[i], false});
+    }
+  }
+  return placements;
+}
+
 void PoseGraph2D::RunFinalOptimization() {
   executor_->WaitIdle();
   {

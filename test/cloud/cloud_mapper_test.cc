@@ -45,13 +45,12 @@ TEST(CloudMapperTest, CloudFollowsItsSubmapWhenGlobalSlamMovesIt) {
   CloudMapper mapper(TestOptions());
   const common::Rigid2d T_local_submap(1.0, 0.0, 0.0);
   mapper.AddLocalPose(0.0, common::Rigid2d(1.0, 0.0, 0.0), 0, T_local_submap);
-  mapper.UpdateSubmapPoses({T_local_submap});
   mapper.AddFrame(WallFrame(0.1));
   mapper.AddLocalPose(0.2, common::Rigid2d(1.0, 0.0, 0.0), 0, T_local_submap);
   ASSERT_EQ(mapper.stats().frames_bound, 1);
   EXPECT_NEAR(Centroid(*mapper.binder().GlobalCloud()).x(), 1.0 + kWallDepthM, 0.02);
   // Global SLAM turns the submap by 90 degrees about the map origin and lifts it 3 m in y.
-  mapper.UpdateSubmapPoses({common::Rigid2d(0.0, 4.0, M_PI / 2.0)});
+  mapper.PlaceSubmaps({{0, common::Rigid2d(0.0, 4.0, M_PI / 2.0)}});
   const Eigen::Vector3d c = Centroid(*mapper.binder().GlobalCloud());
   EXPECT_NEAR(c.x(), 0.0, 0.02);
   EXPECT_NEAR(c.y(), 4.0 + kWallDepthM, 0.02);

@@ -27,8 +27,9 @@ class RecordingPublisher : public CloudRegionPublisher {
   std::vector<CloudRegionUpdate> updates;
 };
 
-CloudPoseMessage Pose(double stamp_s, double x, int submap_id, const common::Rigid2d& T_local_submap) {
-  CloudPoseMessage message;
+session::CloudPoseUpdate Pose(double stamp_s, double x, int submap_id,
+                              const common::Rigid2d& T_local_submap) {
+  session::CloudPoseUpdate message;
   message.stamp_s = stamp_s;
   message.submap_id = submap_id;
   message.T_local_tracking = common::Rigid2d(x, 0.0, 0.0);
@@ -38,13 +39,14 @@ CloudPoseMessage Pose(double stamp_s, double x, int submap_id, const common::Rig
 
 TEST(CloudWorkerTest, PublishesChangedRegionInSubmapFrameAndAgainWhenMoved) {
   RecordingPublisher publisher;
-  CloudWorker worker(TestOptions(), &publisher);
+  session::CloudStage stage(TestOptions(), /*record_cost=*/false);
+  CloudWorker worker(&stage, &publisher);
   const common::Rigid2d T_local_submap(1.0, 0.0, 0.0);
-  CloudPoseMessage first = Pose(0.0, 1.0, 0, T_local_submap);
-  first.T_map_submaps = {T_local_submap};
-  worker.AddPoseMessage(first);
+  session::CloudPoseUpdate first = Pose(0.0, 1.0, 0, T_local_submap);
+  first.placements = {{0, T_local_submap}};
+  worker.AddPoseUpdate(first);
   worker.AddFrame(WallFrame(0.1));
-  worker.AddPoseMessage(Pose(0.2, 1.0, 0, T_local_submap));
+  worker.AddPoseUpdate(Pose(0.2, 1.0, 0, T_local_submap));
   ASSERT_EQ(worker.mapper().stats().frames_bound, 1);
   const auto t0 = std::chrono::steady_clock::now();
   worker.MaybePublish(t0);
@@ -59,9 +61,9 @@ TEST(CloudWorkerTest, PublishesChangedRegionInSubmapFrameAndAgainWhenMoved) {
   // Nothing changed: nothing more is published; a move is, but only after the period.
   worker.MaybePublish(t0 + CloudWorker::kPublishPeriod);
   EXPECT_EQ(publisher.updates.size(), 1u);
-  CloudPoseMessage moved;
-  moved.T_map_submaps = {common::Rigid2d(0.0, 4.0, M_PI / 2.0)};
-  worker.AddPoseMessage(moved);
+  session::CloudPoseUpdate moved;
+  moved.placements = {{0, common::Rigid2d(0.0, 4.0, M_PI / 2.0)}};
+  worker.AddPoseUpdate(moved);
   worker.MaybePublish(t0 + CloudWorker::kPublishPeriod + std::chrono::milliseconds(1));
   EXPECT_EQ(publisher.updates.size(), 1u);
   worker.MaybePublish(t0 + 2 * CloudWorker::kPublishPeriod + std::chrono::milliseconds(1));

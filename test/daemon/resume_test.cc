@@ -160,10 +160,10 @@ void CheckResumedRunEqualsUninterruptedRun(bool replay_from_start) {
   const auto expected_dense =
       pose_graph::DensifyWithOdometry(expected_nodes, whole.odometry());
   ASSERT_GT(checkpoint.contents.odometry.size(), 50u);
-  ASSERT_EQ(written.size(), io::ToTrajectory(expected_dense).size());
+  ASSERT_EQ(written.size(), session::ToTrajectory(expected_dense).size());
   double max_error = 0.0;
   size_t i = 0;
-  for (const auto& pose : io::ToTrajectory(expected_dense)) {
+  for (const auto& pose : session::ToTrajectory(expected_dense)) {
     ASSERT_NEAR(written[i].stamp_s, pose.stamp_s, 1e-6) << i;
     max_error = std::max(max_error, Distance(written[i].pose.ToRigid2d(), pose.pose.ToRigid2d()));
     ++i;

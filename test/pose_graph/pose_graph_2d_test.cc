@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <vector>
 
 #include "fusemap/common/math.h"
@@ -42,6 +43,11 @@ struct RunResult {
   std::vector<common::Rigid2d> T_local_nodes;
   int callbacks = 0;
   int moved_submaps = 0;
+  // TakeSubmapPlacements after every node and after the final optimisation: how often each
+  // submap was handed out as new, and the pose it was last handed out at.
+  std::map<int, int> placed_new;
+  std::map<int, common::Rigid2d> placed;
+  std::vector<common::Rigid2d> T_map_submaps;
 };
 
 // Stands in for local SLAM with a known drift: every step's estimated motion has 1 % too much
@@ -76,8 +82,17 @@ RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Exe
                             sensor::AdaptiveVoxelFilter(data.returns, filter), submaps),
               i);
     result.T_local_nodes.push_back(T_local_node);
+    for (const SubmapPlacement& p : graph.TakeSubmapPlacements()) {
+      result.placed_new[p.submap] += p.is_new;
+      result.placed[p.submap] = p.T_map_submap;
+    }
   }
   graph.RunFinalOptimization();
+  for (const SubmapPlacement& p : graph.TakeSubmapPlacements()) {
+    result.placed_new[p.submap] += p.is_new;
+    result.placed[p.submap] = p.T_map_submap;
+  }
+  result.T_map_submaps = graph.Snapshot()->T_map_submaps;
   result.stats = graph.stats();
   result.T_map_nodes = graph.Snapshot()->T_map_nodes;
   EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
@@ -130,6 +145,21 @@ TEST(PoseGraph2DTest, LoopClosureReducesDrift) {
   EXPECT_LT(optimized_m, 0.08);
   EXPECT_GT(run.callbacks, 0);
   EXPECT_GT(run.moved_submaps, 0);
+}
+
+TEST(PoseGraph2DTest, SubmapPlacementsFollowEveryOptimisation) {
+  common::InlineExecutor executor;
+  const RunResult result = RunGraph(80, 10, &executor);
+  ASSERT_GT(result.stats.optimizations, 1);
+  ASSERT_EQ(result.placed.size(), result.T_map_submaps.size());
+  for (size_t i = 0; i < result.T_map_submaps.size(); ++i) {
+    const int submap = static_cast<int>(i);
+    EXPECT_EQ(result.placed_new.at(submap), 1) << "submap " << i;
+    // Whoever follows the placements holds every submap within the one threshold.
+    EXPECT_FALSE(SubmapMoved(result.placed.at(submap), result.T_map_submaps[i])) << "submap " << i;
+  }
+  // Optimisations moved submaps, and the placements re-placed them.
+  EXPECT_GT(result.moved_submaps, 0);
 }
 
 TEST(PoseGraph2DTest, ThreadPoolRunFindsLoopClosures) {

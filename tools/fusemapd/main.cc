@@ -232,7 +232,7 @@ int Run(const Args& args) {
                  slam.channels.lidar.c_str());
     return kExitRuntime;
   }
-  io::RunOutputsReport written;
+  session::RunOutputsReport written;
   if (!engine->WriteOutputs(args.out, &error, &written)) {
     std::fprintf(stderr, "fusemapd: %s\n", error.c_str());
     return kExitRuntime;

@@ -14,7 +14,6 @@
 #include <variant>
 #include <vector>
 
-#include "cloud_feed.h"
 #include "fusemap/common/math.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/eval/relation_error.h"
@@ -24,12 +23,12 @@
 #include "fusemap/io/relations_file.h"
 #include "fusemap/io/stamp_map_file.h"
 #include "fusemap/io/rgbd_conversions.h"
-#include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
 #include "fusemap/io/tum_trajectory.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/pose_graph/odometry_calibration.h"
-#include "fusemap/sensor/stamp_filter.h"
+#include "fusemap/sensor/stamp_gate.h"
+#include "fusemap/session/slam_session.h"
 
 namespace fusemap {
 namespace {
@@ -188,11 +187,8 @@ int Run(const Args& args) {
   } else {
     executor = std::make_unique<common::InlineExecutor>();
   }
-  pose_graph::MapBuilder2D builder(config.map_builder, executor.get());
-  std::unique_ptr<offline_tool::CloudFeed> cloud_feed;
-  if (config.cloud.enabled) cloud_feed = std::make_unique<offline_tool::CloudFeed>(config.cloud);
+  session::SlamSession session(config, executor.get(), /*record_cloud_cost=*/true);
 
-  std::vector<sensor::OdometryData> odometry;
   std::vector<double> scan_cost_ms;
   int scans = 0, rgbd_frames = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
   double first_stamp_s = 0.0, last_stamp_s = 0.0;
@@ -207,14 +203,16 @@ int Run(const Args& args) {
                    error.c_str());
     }
   };
-  // The daemon's stamp policy (sensor::StampFilter, as in daemon::Intake): absurd or backwards
+  // The daemon's stamp policy (sensor::StampGate, as in daemon::Intake): absurd or backwards
   // stamps are dropped, a far jump is held until the channel's next message confirms it, a
   // plausible backwards jump of the laser is a time reset.
   using Message =
       std::variant<sensor::LaserScan, sensor::OdometryData, sensor::ImuData, sensor::RgbdFrame>;
   enum { kLaser = 0, kOdometry, kImu, kRgbd, kChannels };
-  sensor::StampFilter stamp_filter(sensor::StampFilterOptions(), kChannels, kLaser);
-  std::array<std::optional<Message>, kChannels> held;
+  sensor::StampGate<Message> gate(
+      sensor::StampFilterOptions(), kChannels, kLaser, [](Message& message) -> double& {
+        return std::visit([](auto& data) -> double& { return data.stamp_s; }, message);
+      });
   int bad_stamps = 0;
   const auto drop_bad_stamp = [&](const std::string& why) {
     if (bad_stamps++ == 0) {
@@ -222,26 +220,21 @@ int Run(const Args& args) {
                    why.c_str());
     }
   };
-  const auto apply = [&](Message& message) {
-    if (auto* scan = std::get_if<sensor::LaserScan>(&message)) {
+  const auto apply = [&](const Message& message) {
+    if (const auto* scan = std::get_if<sensor::LaserScan>(&message)) {
       const auto t0 = std::chrono::steady_clock::now();
-      const auto result = builder.AddScan(*scan);
+      session.AddScan(*scan);
       scan_cost_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       ++scans;
-      if (cloud_feed && result) cloud_feed->AddScan(builder, scan->stamp_s, *result);
-    } else if (auto* data = std::get_if<sensor::OdometryData>(&message)) {
-      odometry.push_back(*data);
-      builder.AddOdometry(*data);
-    } else if (auto* imu = std::get_if<sensor::ImuData>(&message)) {
-      builder.AddImu(*imu);
-    } else if (auto* frame = std::get_if<sensor::RgbdFrame>(&message)) {
-      cloud_feed->AddFrame(*frame);
+    } else if (const auto* odometry = std::get_if<sensor::OdometryData>(&message)) {
+      session.AddOdometry(*odometry);
+    } else if (const auto* imu = std::get_if<sensor::ImuData>(&message)) {
+      session.AddImu(*imu);
+    } else if (const auto* frame = std::get_if<sensor::RgbdFrame>(&message)) {
+      session.AddRgbdFrame(*frame);
       ++rgbd_frames;
     }
-  };
-  const auto stamp_of = [](Message& message) -> double& {
-    return std::visit([](auto& data) -> double& { return data.stamp_s; }, message);
   };
   while (reader.Next(&event)) {
     const int size = static_cast<int>(event.data.size());
@@ -259,7 +252,7 @@ int Run(const Args& args) {
     } else if (event.channel == config.channels.imu) {
       channel = kImu;
       decoded = io::DecodeImu(event.data.data(), size, &message.emplace<sensor::ImuData>(), &error);
-    } else if (cloud_feed && event.channel == config.channels.rgbd) {
+    } else if (session.cloud_stage() != nullptr && event.channel == config.channels.rgbd) {
       channel = kRgbd;
       decoded = io::DecodeRgbdFrame(event.data.data(), size,
                                     &message.emplace<sensor::RgbdFrame>(), &error);
@@ -271,30 +264,21 @@ int Run(const Args& args) {
       drop_bad_message();
       continue;
     }
-    const sensor::StampFilter::Decision decision = stamp_filter.Check(channel, stamp_of(message));
-    std::optional<Message> suspect = std::move(held[channel]);
-    held[channel].reset();
-    if (decision.held == sensor::StampFilter::Held::kRelease && suspect) {
-      stamp_of(*suspect) = decision.held_stamp_s;
-      apply(*suspect);
+    auto passed = gate.Offer(channel, message);
+    const sensor::StampFilter::Decision& decision = passed.decision;
+    if (passed.released) {
+      apply(*passed.released);
     } else if (decision.held == sensor::StampFilter::Held::kDrop) {
       drop_bad_stamp(decision.held_reason);
     }
-    switch (decision.verdict) {
-      case sensor::StampFilter::Verdict::kAccept:
-        stamp_of(message) = decision.stamp_s;
-        apply(message);
-        break;
-      case sensor::StampFilter::Verdict::kHold:
-        held[channel] = std::move(message);
-        continue;
-      case sensor::StampFilter::Verdict::kReject:
+    if (!passed.pass) {
+      if (decision.verdict == sensor::StampFilter::Verdict::kReject) {
         if (channel == kOdometry) ++odometry_out_of_order;
         drop_bad_stamp(decision.kind + ": " + decision.reason);
-        continue;
-      case sensor::StampFilter::Verdict::kSkip:
-        continue;
+      }
+      continue;
     }
+    apply(message);
     const double stamp_s = decision.stamp_s;
     if (!have_stamp) first_stamp_s = stamp_s;
     have_stamp = true;
@@ -307,8 +291,7 @@ int Run(const Args& args) {
                    std::chrono::duration<double>(now - start).count());
     }
   }
-  builder.Finish();
-  if (cloud_feed) cloud_feed->Finish(builder);
+  session.Finish();
   const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) std::fprintf(stderr, "\n");
   if (scans == 0) {
@@ -317,16 +300,13 @@ int Run(const Args& args) {
     return 1;
   }
 
-  io::RunOutputs run;
-  run.builder = &builder;
-  run.odometry = &odometry;
-  run.map_resolution_m = config.map_builder.local_slam.submaps.resolution_m;
-  run.cloud_mapper = cloud_feed ? &cloud_feed->mapper() : nullptr;
-  io::RunOutputsReport written;
-  if (!io::WriteRunOutputs(run, args.out, &written, &error)) {
+  session::RunOutputsReport written;
+  if (!session.WriteOutputs(args.out, &written, &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
     return 1;
   }
+  const std::vector<sensor::OdometryData>& odometry = session.odometry();
+  const pose_graph::MapBuilder2D& builder = session.builder();
   const std::string out = args.out + "/";
   // The trajectory that is written and scored: node poses densified with the odometry,
   // optionally corrected for its systematic errors first.
@@ -352,7 +332,7 @@ int Run(const Args& args) {
   const auto dense = pose_graph::DensifyWithOdometry(
       nodes, pose_graph::ApplyOdometryCalibration(calibration, odometry));
   if (!calibration.IsIdentity() &&
-      !io::WriteTumTrajectoryFile(out + "trajectory.tum", io::ToTrajectory(dense), &error)) {
+      !io::WriteTumTrajectoryFile(out + "trajectory.tum", session::ToTrajectory(dense), &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());
     return 1;
   }
@@ -361,11 +341,11 @@ int Run(const Args& args) {
   struct rusage usage;
   getrusage(RUSAGE_SELF, &usage);
   // A message still held at the end was a jump nothing confirmed.
-  for (const auto& suspect : held) bad_stamps += suspect.has_value();
+  bad_stamps += gate.num_held();
   std::printf("log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d "
               "bad_stamps=%d time_resets=%lld\n",
               args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order,
-              bad_stamps, static_cast<long long>(stamp_filter.time_resets()));
+              bad_stamps, static_cast<long long>(gate.filter().time_resets()));
   std::printf(
       "local_slam: scans=%d inserted=%d too_few_returns=%d out_of_order=%d "
       "initial_match_rejected=%d absurd_predictions=%d insertions_refused=%d\n",
@@ -394,26 +374,25 @@ int Run(const Args& args) {
     std::printf("wrote%s\n", files.c_str());
     std::printf("%s\n", written.cloud_summary.c_str());
   }
-  if (cloud_feed && rgbd_frames > 0) {  // Laser-only logs: nothing to report.
-    const auto& c = cloud_feed->mapper().binder().stats();
+  if (session.cloud_stage() != nullptr && rgbd_frames > 0) {  // Laser-only logs: nothing to report.
+    const session::CloudStageCost& cost = session.cloud_stage()->cost();
+    const auto& c = session.cloud_stage()->mapper().binder().stats();
     std::printf("cloud_cost: rgbd_frames=%d per_frame_ms_median=%.1f per_frame_ms_p99=%.1f "
                 "cloud_s=%.2f submap_updates=%zu update_ms_max=%.2f final_update_ms=%.2f "
                 "final_update_regions=%zu final_update_points=%zu rebuilt_points_total=%lld\n",
-                rgbd_frames, Percentile(cloud_feed->frame_ms(), 0.5),
-                Percentile(cloud_feed->frame_ms(), 0.99), cloud_feed->total_s(),
-                cloud_feed->update_ms().size(),
-                cloud_feed->update_ms().empty()
+                rgbd_frames, Percentile(cost.frame_ms, 0.5), Percentile(cost.frame_ms, 0.99),
+                cost.total_s, cost.update_ms.size(),
+                cost.update_ms.empty()
                     ? 0.0
-                    : *std::max_element(cloud_feed->update_ms().begin(),
-                                        cloud_feed->update_ms().end()),
-                cloud_feed->final_update_ms(), cloud_feed->final_update_regions(),
-                cloud_feed->final_update_points(), static_cast<long long>(c.rebuilt_points_total));
+                    : *std::max_element(cost.update_ms.begin(), cost.update_ms.end()),
+                cost.final_update_ms, cost.final_update_regions, cost.final_update_points,
+                static_cast<long long>(c.rebuilt_points_total));
   }
   if (!calibration_note.empty()) std::printf("%s\n", calibration_note.c_str());
   if (!args.relations.empty()) {
     if (!stamp_map_summary.empty()) std::printf("%s\n", stamp_map_summary.c_str());
     const eval::RelationError r = eval::EvaluateRelations(
-        io::ToTrajectory(dense), relations);
+        session::ToTrajectory(dense), relations);
     std::printf("relations: used=%d skipped=%d trans_mean_m=%.4f trans_std_m=%.4f "
                 "rot_mean_deg=%.3f rot_std_deg=%.3f\n",
                 r.count_used, r.count_skipped, r.trans_m.mean, r.trans_m.std, r.rot_deg.mean,

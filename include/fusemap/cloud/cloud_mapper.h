@@ -57,11 +57,17 @@ struct CloudMapperStats {
   FrameCloudStats last_frame;
 };
 
+// A submap's pose in the map frame, by pose-graph index.
+struct SubmapPose2d {
+  int submap = 0;
+  common::Rigid2d T_map_submap;
+};
+
 // Feeds RGB-D frames into the cloud binder at the pose local SLAM had when they were taken:
 // each frame waits until a laser pose at or after its stamp arrives, is interpolated between
 // the bracketing poses (never the nearest one), bound to the submap that was active then, and
 // stays in that submap's frame. Clouds are bound with local-frame poses, which global SLAM
-// never changes; global SLAM only moves submaps, reported through UpdateSubmapPoses.
+// never changes; global SLAM only moves submaps, reported through PlaceSubmaps.
 // Not thread-safe: one owner (the offline runner, or the daemon's cloud thread).
 class CloudMapper {
  public:
@@ -73,9 +79,9 @@ class CloudMapper {
   // fixed local pose) that frames taken from now on bind to. Processes frames it unblocks.
   void AddLocalPose(double stamp_s, const common::Rigid2d& T_local_base, int submap_id,
                     const common::Rigid2d& T_local_submap);
-  // Every submap's current map-frame pose, by index. New submaps are placed; submaps whose
-  // pose changed have only their own regions re-posed.
-  void UpdateSubmapPoses(const std::vector<common::Rigid2d>& T_map_submaps);
+  // Submaps global SLAM placed or moved (pose_graph::PoseGraph2D::TakeSubmapPlacements decides
+  // what moved): new submaps are placed, known ones have only their own regions re-posed.
+  void PlaceSubmaps(const std::vector<SubmapPose2d>& placements);
   // Queues a frame; it is processed once the laser poses around its stamp are known.
   void AddFrame(const sensor::RgbdFrame& frame);
   // End of input: frames still waiting for a later pose can never get one and are dropped.
@@ -86,6 +92,8 @@ class CloudMapper {
   const PoseInterpolator& interpolator() const { return interpolator_; }
   const CloudMapperOptions& options() const { return options_; }
   int pending_frames() const { return static_cast<int>(pending_.size()); }
+  // Where each submap's clouds are placed now, by pose-graph index.
+  const std::map<int, common::Rigid2d>& T_map_submaps() const { return T_map_submaps_; }
 
  private:
   struct Binding {

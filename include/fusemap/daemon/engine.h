@@ -18,21 +18,23 @@
 #include "fusemap/daemon/intake.h"
 #include "fusemap/daemon/publisher.h"
 #include "fusemap/daemon/rate_limited_log.h"
-#include "fusemap/io/run_outputs.h"
 #include "fusemap/io/slam_config.h"
 #include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
+#include "fusemap/session/slam_session.h"
 
 namespace fusemap {
 namespace daemon {
 
-// The daemon without the network: intake queues, the local SLAM thread feeding MapBuilder2D
-// exactly as fusemap_offline does, global optimisation on the executor (a ThreadPool, or inline
-// on the SLAM thread with one thread: then runs are bit-for-bit reproducible), a publisher
-// thread (pose per scan, submap list at a rate and after every optimisation, loop-closure
-// events, health) and an RGB-D consumer thread. Whoever owns the LCM handle feeds intake().
-// Ownership: the SLAM thread alone feeds the builder and owns the odometry record; the other
-// threads only read the pose graph's thread-safe snapshots and counters.
+// The daemon without the network: threads and queues around the session::SlamSession that
+// fusemap_offline drives too. Intake queues; the SLAM thread feeding the session; global
+// optimisation on the executor (a ThreadPool, or inline on the SLAM thread with one thread:
+// then runs are bit-for-bit reproducible); a publisher thread (pose per scan, submap list at a
+// rate and after every optimisation, loop-closure events, health); an RGB-D thread that runs
+// the session's cloud stage on the pose updates the SLAM thread queues for it. Whoever owns
+// the LCM handle feeds intake().
+// Ownership: the SLAM thread alone calls the session's SLAM half; the RGB-D thread alone its
+// cloud stage; the other threads only read the pose graph's thread-safe snapshots and counters.
 class Engine {
  public:
   using RgbdConsumer = std::function<void(RgbdMessage&&)>;
@@ -48,8 +50,6 @@ class Engine {
   void SetRgbdConsumer(RgbdConsumer consumer);
   // Before Start(): where changed cloud regions go (with cloud.enabled; may stay unset).
   void SetCloudRegionPublisher(CloudRegionPublisher* publisher) { cloud_publisher_ = publisher; }
-  // Before Start(): for restoring a checkpoint into.
-  pose_graph::MapBuilder2D& builder() { return *builder_; }
   // Before Start(): continue from a checkpointed state (--resume) and the odometry record
   // saved with it. Replaces the builder and refuses input older than the state's last node.
   void Restore(const pose_graph::MapBuilderState2D& state,
@@ -58,7 +58,7 @@ class Engine {
   // memory into `archive` (io/trajectory_archive.h), so that memory does not follow the run's
   // length; WriteOutputs reads them back.
   void SetTrajectoryArchive(std::unique_ptr<io::TrajectoryArchive> archive) {
-    archive_ = std::move(archive);
+    session_->SetTrajectoryArchive(std::move(archive));
   }
 
   void Start();
@@ -69,16 +69,16 @@ class Engine {
 
   // After Finish(): the builder and the odometry the SLAM thread accepted (since the last
   // archiving, with a trajectory archive).
-  const pose_graph::MapBuilder2D& finished_builder() const { return *builder_; }
-  const std::vector<sensor::OdometryData>& odometry() const { return odometry_; }
+  const pose_graph::MapBuilder2D& finished_builder() const { return session_->builder(); }
+  const std::vector<sensor::OdometryData>& odometry() const { return session_->odometry(); }
   // After Finish(): the RGB-D thread's cloud mapper; null without cloud.enabled.
   const cloud::CloudMapper* cloud_mapper() const {
-    return cloud_worker_ ? &cloud_worker_->mapper() : nullptr;
+    return session_->cloud_stage() ? &session_->cloud_stage()->mapper() : nullptr;
   }
   // After Finish(): fusemap_offline's output files into `dir`.
   // With RGB-D frames bound also the cloud files; `report` (optional) lists what was written.
   bool WriteOutputs(const std::string& dir, std::string* error,
-                    io::RunOutputsReport* report = nullptr) const;
+                    session::RunOutputsReport* report = nullptr) const;
 
   HealthReport Health() const;
   int scans_processed() const { return scans_processed_; }
@@ -97,11 +97,8 @@ class Engine {
   void RunRgbd();
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
-  // Moves trimmed nodes and the odometry record into archive_ (SLAM thread, executor idle).
-  void ArchiveSettled();
   void PublishSubmapsAndLoops(double stamp_s);
-  void ForwardToCloud(double stamp_s, const pose_graph::MapBuilder2D::ScanResult* result);
-  void ConnectBuilder();
+  void ConnectSession();
 
   const io::SlamConfig slam_;
   const DaemonOptions options_;
@@ -116,19 +113,15 @@ class Engine {
   Intake intake_;
   BoundedQueue<OutputEvent> outputs_;
   LatencyWindow latency_;
-  // SLAM thread → RGB-D thread: scan poses and submap poses for the cloud mapper.
-  BoundedQueue<CloudPoseMessage> cloud_poses_;
-  std::atomic<bool> submaps_moved_{false};  // set by the optimiser, cleared by the SLAM thread
+  // SLAM thread → RGB-D thread: the session's pose updates for its cloud stage.
+  BoundedQueue<session::CloudPoseUpdate> cloud_poses_;
   std::unique_ptr<common::Executor> executor_;
-  std::unique_ptr<pose_graph::MapBuilder2D> builder_;
+  std::unique_ptr<session::SlamSession> session_;
 
   // RGB-D thread only (read by others only after Finish joined it); null without a cloud.
   std::unique_ptr<CloudWorker> cloud_worker_;
 
   // SLAM thread only (read by others only after Finish joined it).
-  int cloud_seen_submaps_ = -1;
-  std::vector<sensor::OdometryData> odometry_;
-  std::unique_ptr<io::TrajectoryArchive> archive_;
   std::chrono::steady_clock::time_point last_checkpoint_;
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};

@@ -18,7 +18,7 @@
 #include "fusemap/io/slam_config.h"
 #include "fusemap/sensor/rgbd_frame.h"
 #include "fusemap/sensor/sensor_types.h"
-#include "fusemap/sensor/stamp_filter.h"
+#include "fusemap/sensor/stamp_gate.h"
 
 namespace fusemap {
 namespace daemon {
@@ -81,7 +81,7 @@ class Intake {
   // Before any message (--resume): data of `channel` stamped at or before `stamp_s` is already
   // in the restored state and is skipped (counted as skipped) until the channel passes it.
   void SetResumePoint(InputChannel channel, double stamp_s) {
-    stamp_filter_.SetResumePoint(channel, stamp_s);
+    stamp_gate_.filter().SetResumePoint(channel, stamp_s);
   }
   // Number of time resets so far.
   int64_t time_resets() const { return time_resets_; }
@@ -97,13 +97,13 @@ class Intake {
 
  private:
   bool Reject(InputChannel channel, const std::string& kind, const std::string& why);
-  // Future check of a decoded message's raw stamp, then the stamp filter. Returns whether the
-  // message goes on now (with *stamp_s re-based); first releases or drops the channel's held
-  // message as the filter decides. A message the filter holds is moved into held_.
-  template <typename Message>
-  bool CheckStamp(InputChannel channel, double* stamp_s, Message* message);
-  bool Enqueue(InputChannel channel, SensorMessage message);
-  bool Enqueue(InputChannel channel, RgbdMessage message);
+  // A decoded message on its way to its queue: the stamp gate holds either kind.
+  using AnyMessage = std::variant<SensorMessage, RgbdMessage>;
+  // Future check of a decoded message's raw stamp, then the stamp gate; queues what it lets
+  // through (a held message it releases first, re-stamped). Returns whether `message` was
+  // queued.
+  bool Admit(InputChannel channel, AnyMessage message);
+  bool Enqueue(InputChannel channel, AnyMessage message);
 
   const io::SlamConfig slam_;
   const DaemonOptions options_;
@@ -111,10 +111,7 @@ class Intake {
   const WallClock wall_clock_s_;
   std::array<std::string, kNumInputChannels> names_;
   std::array<ChannelCounters, kNumInputChannels> counters_;
-  sensor::StampFilter stamp_filter_;                    // handler thread only
-  // Messages the stamp filter holds as suspect jumps, per channel; handler thread only.
-  std::array<std::optional<SensorMessage>, kNumInputChannels> held_;
-  std::optional<RgbdMessage> held_rgbd_;
+  sensor::StampGate<AnyMessage> stamp_gate_;  // handler thread only
   std::atomic<int64_t> time_resets_{0};
   bool decode_rgbd_ = false;
   BoundedQueue<SensorMessage> sensor_queue_;

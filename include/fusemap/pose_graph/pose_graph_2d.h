@@ -104,8 +104,14 @@ class PoseGraph2D {
               const sensor::PointCloud2d& filtered_cloud,
               const std::vector<std::shared_ptr<const mapping::Submap2D>>& insertion_submaps);
 
-  // Called after each optimisation with the submaps whose pose changed.
+  // Called after each optimisation with the submaps whose pose changed (SubmapMoved), on
+  // the thread that ran it: a notification for whoever publishes the submap list.
   void AddSubmapsMovedCallback(SubmapsMovedCallback callback);
+  // What one consumer (session::SlamSession, for the cloud) must place since its previous
+  // call: new submaps, and submaps an optimisation moved (SubmapMoved) away from the pose last
+  // handed out, each at its current map pose. Comparing with what was handed out, not with the
+  // pose before each optimisation, lets small moves add up until they count.
+  std::vector<SubmapPlacement> TakeSubmapPlacements();
 
   // Waits for pending work, then runs a last, longer optimisation.
   void RunFinalOptimization();
@@ -203,6 +209,9 @@ class PoseGraph2D {
   std::uint64_t solve_count_ = 0;               // guarded by mutex_
   Stats stats_;                                 // guarded by mutex_
   std::vector<SubmapsMovedCallback> callbacks_;  // guarded by mutex_
+  // TakeSubmapPlacements: the poses it handed out, and the solves they reflect.
+  std::vector<common::Rigid2d> T_map_submaps_placed_;  // guarded by mutex_
+  std::uint64_t placed_solve_count_ = 0;               // guarded by mutex_
   // Work found while holding mutex_, handed to the executor once it is released.
   std::vector<std::function<void()>> pending_tasks_;  // guarded by mutex_
   // Searches handed to the executor and not yet finished, by a running id.

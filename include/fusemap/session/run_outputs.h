@@ -1,5 +1,5 @@
-#ifndef FUSEMAP_IO_RUN_OUTPUTS_H_
-#define FUSEMAP_IO_RUN_OUTPUTS_H_
+#ifndef FUSEMAP_SESSION_RUN_OUTPUTS_H_
+#define FUSEMAP_SESSION_RUN_OUTPUTS_H_
 
 #include <string>
 #include <vector>
@@ -11,7 +11,7 @@
 #include "fusemap/sensor/sensor_types.h"
 
 namespace fusemap {
-namespace io {
+namespace session {
 
 // Time-ordered poses as a TUM trajectory, skipping repeated stamps (TUM needs increasing time).
 eval::Trajectory ToTrajectory(const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& poses);
@@ -27,7 +27,7 @@ struct RunOutputs {
   const cloud::CloudMapper* cloud_mapper = nullptr;
   // Optional (fusemapd): what the run moved out of memory; the trajectory files then cover the
   // archived nodes and odometry as well as the builder's nodes and `odometry`.
-  const TrajectoryArchive* archive = nullptr;
+  const io::TrajectoryArchive* archive = nullptr;
 };
 
 struct RunOutputsReport {
@@ -50,7 +50,7 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
 // over the floor area the map's points occupy in a grid of 0.5 m cells.
 std::string CloudSummaryLine(const cloud::CloudMapper& mapper, const cloud::ColorCloud& map_cloud);
 
-}  // namespace io
+}  // namespace session
 }  // namespace fusemap
 
-#endif  // FUSEMAP_IO_RUN_OUTPUTS_H_
+#endif  // FUSEMAP_SESSION_RUN_OUTPUTS_H_

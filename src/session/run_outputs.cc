@@ -1,4 +1,4 @@
-#include "fusemap/io/run_outputs.h"
+#include "fusemap/session/run_outputs.h"
 
 #include <cmath>
 #include <cstdio>
@@ -14,7 +14,7 @@
 #include "fusemap/mapping/grid_image.h"
 
 namespace fusemap {
-namespace io {
+namespace session {
 namespace {
 
 // Surface area is estimated by counting occupied cells of this edge: a surface crossing a cell
@@ -37,13 +37,13 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
     return false;
   }
   const mapping::GridImage image = mapping::RenderMap(grids, run.map_resolution_m);
-  MapImage map;
+  io::MapImage map;
   map.width = image.width;
   map.height = image.height;
   map.resolution_m = image.resolution_m;
   map.origin_m = image.origin_m;
   map.pixels = image.pixels;
-  if (!WriteMapPgmYaml(map, out + "map", error) || !WriteMapPng(map, xy, out + "map.png", error)) {
+  if (!io::WriteMapPgmYaml(map, out + "map", error) || !io::WriteMapPng(map, xy, out + "map.png", error)) {
     return false;
   }
   report->files.insert(report->files.end(), {out + "map.pgm", out + "map.yaml", out + "map.png"});
@@ -80,14 +80,14 @@ bool WriteCloud(const cloud::CloudMapper& mapper, const mapping::GridImage& lase
   const std::string ply = out + "cloud.ply", pcd = out + "cloud.pcd";
   const std::string removed = out + "cloud_removed.ply";
   const std::string bt = out + "octomap.bt", ot = out + "octomap.ot", png = out + "cloud.png";
-  if (!WriteCloudPly(ply, *map_cloud, error) || !WriteCloudPcd(pcd, *map_cloud, error) ||
-      !WriteCloudPly(removed, removed_points, error) ||
-      !WriteOctoMaps(*map_cloud, mapper.options().octomap_resolution_m, bt, ot, error)) {
+  if (!io::WriteCloudPly(ply, *map_cloud, error) || !io::WriteCloudPcd(pcd, *map_cloud, error) ||
+      !io::WriteCloudPly(removed, removed_points, error) ||
+      !io::WriteOctoMaps(*map_cloud, mapper.options().octomap_resolution_m, bt, ot, error)) {
     return false;
   }
   report->files.insert(report->files.end(), {ply, pcd, removed, bt, ot});
   if (!map_cloud->empty()) {
-    if (!WriteCloudPng(*map_cloud, CloudImageOptions(), png, error)) return false;
+    if (!io::WriteCloudPng(*map_cloud, io::CloudImageOptions(), png, error)) return false;
     report->files.push_back(png);
   }
   report->wrote_cloud = true;
@@ -158,9 +158,9 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
   std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
   for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
   const std::string out = dir + "/";
-  if (!WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
-      !WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||
-      !WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), error)) {
+  if (!io::WriteTumTrajectoryFile(out + "trajectory.tum", ToTrajectory(dense), error) ||
+      !io::WriteTumTrajectoryFile(out + "nodes.tum", ToTrajectory(nodes), error) ||
+      !io::WriteTumTrajectoryFile(out + "odometry.tum", ToTrajectory(raw_odometry), error)) {
     return false;
   }
   report->files.insert(report->files.end(),
@@ -175,5 +175,5 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
   return true;
 }
 
-}  // namespace io
+}  // namespace session
 }  // namespace fusemap
