@@ -69,9 +69,9 @@ CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
 CloudMapper::CloudMapper(const CloudMapperOptions& options)
     : options_(options), binder_(options.binder), interpolator_(options.sync) {}
 
-void CloudMapper::AddLocalPose(double stamp_s, const common::Rigid2d& T_local_base,
+void CloudMapper::AddLocalPose(double stamp_s, const common::Rigid2d& T_local_tracking,
                                int submap_id, const common::Rigid2d& T_local_submap) {
-  if (!interpolator_.AddPose(stamp_s, T_local_base)) return;  // Counted there.
+  if (!interpolator_.AddPose(stamp_s, T_local_tracking)) return;  // Counted there.
   bindings_.push_back({stamp_s, submap_id, T_local_submap});
   if (T_map_submaps_.count(submap_id) == 0) {
     // Until global SLAM reports it, a new submap sits where local SLAM put it; the next
@@ -148,7 +148,7 @@ void CloudMapper::ProcessPending() {
     const PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
     if (result.status == PoseInterpolator::Status::kWait) return;
     if (result.status == PoseInterpolator::Status::kReady) {
-      Bind(pending_.front(), result.T_map_base);
+      Bind(pending_.front(), result.T_local_tracking);
     } else {
       ++stats_.frames_dropped_no_pose;
     }
@@ -164,7 +164,7 @@ const CloudMapper::Binding* CloudMapper::BindingAt(double stamp_s) const {
   return &*std::prev(it);
 }
 
-void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_local_base) {
+void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_local_tracking) {
   const sensor::RgbdFrame& frame = pending.frame;
   const Binding* binding = BindingAt(frame.stamp_s);
   if (binding == nullptr) {
@@ -173,10 +173,10 @@ void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_loc
   }
   const common::Rigid3d T_base_color =
       options_.override_extrinsic ? ExtrinsicFromConfig(options_) : frame.T_base_color;
-  const common::Rigid3d T_submap_base =
-      common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_base);
+  const common::Rigid3d T_submap_tracking =
+      common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_tracking);
   if (options_.binder.remove_dynamic && !options_.binder.ray_carving) {
-    binder_.CarveWithDepth(binding->submap_id, T_submap_base * T_base_color * frame.T_color_depth,
+    binder_.CarveWithDepth(binding->submap_id, T_submap_tracking * T_base_color * frame.T_color_depth,
                            frame.depth_intrinsics, frame.depth_mm);
     ++stats_.frames_carved;
   }
@@ -187,7 +187,7 @@ void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_loc
     ++stats_.frames_empty;
     return;
   }
-  binder_.AddCloud(binding->submap_id, T_submap_base * cloud.T_base_camera, cloud);
+  binder_.AddCloud(binding->submap_id, T_submap_tracking * cloud.T_base_camera, cloud);
   ++stats_.frames_bound;
 }
 

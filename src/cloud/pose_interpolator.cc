@@ -53,12 +53,12 @@ double PoseInterpolator::newest_stamp_s() const {
   return poses_.empty() ? std::numeric_limits<double>::quiet_NaN() : poses_.back().stamp_s;
 }
 
-bool PoseInterpolator::AddPose(double stamp_s, const common::Rigid2d& T_map_base) {
+bool PoseInterpolator::AddPose(double stamp_s, const common::Rigid2d& T_local_tracking) {
   if (!std::isfinite(stamp_s) || (!poses_.empty() && stamp_s <= poses_.back().stamp_s)) {
     ++num_rejected_poses_;
     return false;
   }
-  poses_.push_back(TimedPose{stamp_s, T_map_base});
+  poses_.push_back(TimedPose{stamp_s, T_local_tracking});
   const double horizon_s = stamp_s - options_.max_history_s;
   while (poses_.front().stamp_s < horizon_s) poses_.pop_front();
   return true;
@@ -80,12 +80,12 @@ PoseInterpolator::Result PoseInterpolator::Lookup(double stamp_s, double now_s) 
   const auto after = std::lower_bound(
       poses_.begin(), poses_.end(), stamp_s,
       [](const TimedPose& pose, double stamp) { return pose.stamp_s < stamp; });
-  if (after->stamp_s == stamp_s) return Result{Status::kReady, after->T_map_base};
+  if (after->stamp_s == stamp_s) return Result{Status::kReady, after->T_local_tracking};
   const auto before = std::prev(after);
   const double gap_s = after->stamp_s - before->stamp_s;
   if (gap_s > options_.max_gap_s) return Drop(&num_dropped_gap_);
   const double fraction = (stamp_s - before->stamp_s) / gap_s;
-  return Result{Status::kReady, common::Interpolate(before->T_map_base, after->T_map_base, fraction)};
+  return Result{Status::kReady, common::Interpolate(before->T_local_tracking, after->T_local_tracking, fraction)};
 }
 
 }  // namespace cloud

@@ -14,17 +14,17 @@ bool KeyframeSelectorOptions::IsValid(std::string* error) const {
   return true;
 }
 
-bool KeyframeSelector::Select(double stamp_s, const common::Rigid2d& T_local_base) {
+bool KeyframeSelector::Select(double stamp_s, const common::Rigid2d& T_local_tracking) {
   if (last_stamp_s_) {
     const double dt = stamp_s - *last_stamp_s_;
     if (dt < options_.min_interval_s) return false;
-    const common::Rigid2d motion = last_T_local_base_.inverse() * T_local_base;
+    const common::Rigid2d motion = last_T_local_tracking_.inverse() * T_local_tracking;
     const bool moved = motion.translation().norm() >= options_.min_translation_m ||
                        std::abs(motion.angle_rad()) >= options_.min_rotation_rad;
     if (!moved && dt < options_.max_interval_s) return false;
   }
   last_stamp_s_ = stamp_s;
-  last_T_local_base_ = T_local_base;
+  last_T_local_tracking_ = T_local_tracking;
   return true;
 }
 

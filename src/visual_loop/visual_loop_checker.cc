@@ -33,10 +33,10 @@ VisualLoopChecker::VisualLoopChecker(const VisualLoopCheckerOptions& options,
 }
 
 VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& frame,
-                                                           const common::Rigid2d& T_local_base,
+                                                           const common::Rigid2d& T_local_tracking,
                                                            int node, int submap) {
   FrameResult out;
-  if (!selector_.Select(frame.stamp_s, T_local_base)) return out;
+  if (!selector_.Select(frame.stamp_s, T_local_tracking)) return out;
   out.keyframe = true;
   Keyframe keyframe = MakeKeyframe(frame.image, frame.depth_m, frame.intrinsics, extractor_,
                                    vocabulary_.get(), options_.keyframe);

@@ -20,20 +20,20 @@ TEST(PoseInterpolatorTest, InterpolatesLinearlyBetweenBracketingPoses) {
   ASSERT_TRUE(interpolator.AddPose(10.4, common::Rigid2d(5.0, 5.0, 0.0)));
   const auto mid = interpolator.Lookup(10.05, 10.05);
   ASSERT_EQ(mid.status, Status::kReady);
-  EXPECT_NEAR(mid.T_map_base.x(), 0.25, kTol);
-  EXPECT_NEAR(mid.T_map_base.y(), -0.5, kTol);
-  EXPECT_NEAR(mid.T_map_base.angle_rad(), 0.1, kTol);
+  EXPECT_NEAR(mid.T_local_tracking.x(), 0.25, kTol);
+  EXPECT_NEAR(mid.T_local_tracking.y(), -0.5, kTol);
+  EXPECT_NEAR(mid.T_local_tracking.angle_rad(), 0.1, kTol);
   // Exactly on a sample, and on the last sample.
   const auto on = interpolator.Lookup(10.2, 10.2);
   ASSERT_EQ(on.status, Status::kReady);
-  EXPECT_NEAR(on.T_map_base.x(), 1.0, kTol);
+  EXPECT_NEAR(on.T_local_tracking.x(), 1.0, kTol);
   EXPECT_EQ(interpolator.Lookup(10.4, 10.4).status, Status::kReady);
   // Second interval, not the nearest sample.
   const auto late = interpolator.Lookup(10.35, 10.35);
   ASSERT_EQ(late.status, Status::kReady);
-  EXPECT_NEAR(late.T_map_base.x(), 4.0, kTol);
-  EXPECT_NEAR(late.T_map_base.y(), 3.25, kTol);
-  EXPECT_NEAR(late.T_map_base.angle_rad(), 0.1, kTol);
+  EXPECT_NEAR(late.T_local_tracking.x(), 4.0, kTol);
+  EXPECT_NEAR(late.T_local_tracking.y(), 3.25, kTol);
+  EXPECT_NEAR(late.T_local_tracking.angle_rad(), 0.1, kTol);
 }
 
 TEST(PoseInterpolatorTest, YawTakesTheShortArcAcrossPi) {
@@ -43,12 +43,12 @@ TEST(PoseInterpolatorTest, YawTakesTheShortArcAcrossPi) {
   interpolator.AddPose(1.1, common::Rigid2d(0.0, 0.0, -a));  // 0.2 rad further, across +pi.
   const auto mid = interpolator.Lookup(1.05, 1.05);
   ASSERT_EQ(mid.status, Status::kReady);
-  EXPECT_NEAR(std::abs(mid.T_map_base.angle_rad()), common::kPi, 1e-9);
+  EXPECT_NEAR(std::abs(mid.T_local_tracking.angle_rad()), common::kPi, 1e-9);
   const auto quarter = interpolator.Lookup(1.025, 1.025);
   ASSERT_EQ(quarter.status, Status::kReady);
-  EXPECT_NEAR(quarter.T_map_base.angle_rad(), a + 0.05, 1e-9);
+  EXPECT_NEAR(quarter.T_local_tracking.angle_rad(), a + 0.05, 1e-9);
   const auto three_quarters = interpolator.Lookup(1.075, 1.075);
-  EXPECT_NEAR(three_quarters.T_map_base.angle_rad(), -a - 0.05, 1e-9);
+  EXPECT_NEAR(three_quarters.T_local_tracking.angle_rad(), -a - 0.05, 1e-9);
 }
 
 TEST(PoseInterpolatorTest, WaitsForALaterPoseThenDrops) {
@@ -66,7 +66,7 @@ TEST(PoseInterpolatorTest, WaitsForALaterPoseThenDrops) {
   interpolator.AddPose(1.1, common::Rigid2d(1.0, 0.0, 0.0));
   const auto ready = interpolator.Lookup(1.0, 1.2);
   ASSERT_EQ(ready.status, Status::kReady);
-  EXPECT_NEAR(ready.T_map_base.x(), 0.5, kTol);
+  EXPECT_NEAR(ready.T_local_tracking.x(), 0.5, kTol);
 }
 
 TEST(PoseInterpolatorTest, DropsAcrossLargeGapsAndBeforeHistory) {
@@ -91,7 +91,7 @@ TEST(PoseInterpolatorTest, RejectsOutOfOrderAndDuplicateStamps) {
   EXPECT_FALSE(interpolator.AddPose(std::nan(""), common::Rigid2d(9.0, 0.0, 0.0)));
   EXPECT_EQ(interpolator.num_rejected_poses(), 3);
   EXPECT_EQ(interpolator.size(), 1u);
-  EXPECT_NEAR(interpolator.Lookup(2.0, 2.0).T_map_base.x(), 0.0, kTol);
+  EXPECT_NEAR(interpolator.Lookup(2.0, 2.0).T_local_tracking.x(), 0.0, kTol);
 }
 
 TEST(PoseInterpolatorTest, TrimsHistory) {

@@ -75,9 +75,10 @@ class CloudMapper {
   CloudMapper(const CloudMapper&) = delete;
   CloudMapper& operator=(const CloudMapper&) = delete;
 
-  // Local SLAM's pose of the base at a scan, and the submap (by pose-graph index, with its
-  // fixed local pose) that frames taken from now on bind to. Processes frames it unblocks.
-  void AddLocalPose(double stamp_s, const common::Rigid2d& T_local_base, int submap_id,
+  // Local SLAM's pose of the tracking frame (the robot base) at a scan, and the submap (by
+  // pose-graph index, with its fixed local pose) that frames taken from now on bind to.
+  // Processes frames it unblocks.
+  void AddLocalPose(double stamp_s, const common::Rigid2d& T_local_tracking, int submap_id,
                     const common::Rigid2d& T_local_submap);
   // Submaps global SLAM placed or moved (pose_graph::PoseGraph2D::TakeSubmapPlacements decides
   // what moved): new submaps are placed, known ones have only their own regions re-posed.
@@ -108,7 +109,7 @@ class CloudMapper {
     sensor::RgbdFrame frame;  // carve-only frames keep no colour image
     bool bind;                // false: within min_frame_interval_s, only carves
   };
-  void Bind(const PendingFrame& pending, const common::Rigid2d& T_local_base);
+  void Bind(const PendingFrame& pending, const common::Rigid2d& T_local_tracking);
   const Binding* BindingAt(double stamp_s) const;
 
   const CloudMapperOptions options_;

@@ -25,27 +25,28 @@ struct PoseInterpolatorOptions {
 PoseInterpolatorOptions ParsePoseInterpolatorOptions(common::ConfigReader& reader);
 
 // Time synchronisation between the laser pose stream and camera frames: keeps a bounded,
-// strictly time-ordered history of planar base poses and interpolates the pose at a frame's
-// stamp between the two samples that bracket it (linear translation, shortest-arc yaw), never
-// the nearest sample. The 3D camera pose is then
-// Rigid3d::FromRigid2d(T_map_base) * T_base_camera.
+// strictly time-ordered history of local SLAM's planar poses of the tracking frame (the robot
+// base, which the camera extrinsics T_base_camera are given in) and interpolates the pose at a
+// frame's stamp between the two samples that bracket it (linear translation, shortest-arc yaw),
+// never the nearest sample. The 3D camera pose in the local frame is then
+// Rigid3d::FromRigid2d(T_local_tracking) * T_base_camera.
 class PoseInterpolator {
  public:
   enum class Status {
-    kReady,  // `T_map_base` holds the interpolated pose.
+    kReady,  // `T_local_tracking` holds the interpolated pose.
     kWait,   // The stamp is newer than every pose, and the frame has not waited hold_s yet.
     kDrop,   // No pose can be had: too old, bracketing gap too large, or waited too long.
   };
   struct Result {
     Status status = Status::kDrop;
-    common::Rigid2d T_map_base;
+    common::Rigid2d T_local_tracking;
   };
 
   explicit PoseInterpolator(const PoseInterpolatorOptions& options);
 
   // Appends a pose. Stamps must strictly increase; an out-of-order or duplicate stamp is
   // rejected (returns false) and counted. Trims the history to max_history_s.
-  bool AddPose(double stamp_s, const common::Rigid2d& T_map_base);
+  bool AddPose(double stamp_s, const common::Rigid2d& T_local_tracking);
 
   // The pose at stamp_s. `now_s` is the caller's current time in the same time base as the
   // stamps (newest sensor stamp seen, or the clock in a live system); a frame waits while
@@ -65,7 +66,7 @@ class PoseInterpolator {
  private:
   struct TimedPose {
     double stamp_s;
-    common::Rigid2d T_map_base;
+    common::Rigid2d T_local_tracking;
   };
 
   Result Drop(int64_t* counter);

@@ -23,12 +23,12 @@ class KeyframeSelector {
  public:
   explicit KeyframeSelector(const KeyframeSelectorOptions& options) : options_(options) {}
   // True if the frame should be kept; the selector then remembers it as the last keyframe.
-  bool Select(double stamp_s, const common::Rigid2d& T_local_base);
+  bool Select(double stamp_s, const common::Rigid2d& T_local_tracking);
 
  private:
   KeyframeSelectorOptions options_;
   std::optional<double> last_stamp_s_;
-  common::Rigid2d last_T_local_base_;
+  common::Rigid2d last_T_local_tracking_;
 };
 
 }  // namespace visual_loop

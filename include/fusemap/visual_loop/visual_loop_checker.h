@@ -89,7 +89,7 @@ class VisualLoopChecker {
     std::string rejection;  // why a candidate was refused, if one was
   };
   // Offers a frame with the robot's local-SLAM pose and the node/submap it belongs to.
-  FrameResult AddFrame(const CameraFrame& frame, const common::Rigid2d& T_local_base, int node,
+  FrameResult AddFrame(const CameraFrame& frame, const common::Rigid2d& T_local_tracking, int node,
                        int submap);
 
   // Verifies keyframe query against keyframe match where a laser loop says the query base
