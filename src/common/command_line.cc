@@ -122,19 +122,22 @@ void CommandLine::AddChoice(const std::string& name, std::string* value,
 }
 
 void CommandLine::AddInt(const std::string& name, int* value, int min, int max) {
-  Add({name, true, false, false, [name, value, min, max](const std::string& text, std::string* error) {
+  Add({name, true, false, false,
+       [name, value, min, max](const std::string& text, std::string* error) {
          return SetWholeNumber(name, text, min, max, value, error);
        }});
 }
 
 void CommandLine::AddInt64(const std::string& name, int64_t* value, int64_t min, int64_t max) {
-  Add({name, true, false, false, [name, value, min, max](const std::string& text, std::string* error) {
+  Add({name, true, false, false,
+       [name, value, min, max](const std::string& text, std::string* error) {
          return SetWholeNumber(name, text, min, max, value, error);
        }});
 }
 
 void CommandLine::AddDouble(const std::string& name, double* value, NumberRange range) {
-  Add({name, true, false, false, [name, value, range](const std::string& text, std::string* error) {
+  Add({name, true, false, false,
+       [name, value, range](const std::string& text, std::string* error) {
          double parsed = 0.0;
          if (!ParseFiniteNumber(text, &parsed) || !range.Contains(parsed)) {
            *error = name + ": '" + text + "' is not " + range.Describe();

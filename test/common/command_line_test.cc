@@ -89,7 +89,8 @@ TEST(CommandLineTest, UsageErrorsNameTheOption) {
     Args args;
     std::string error;
     EXPECT_EQ(Parse(argv, &args, &error), Status::kError) << expected;
-    EXPECT_EQ(error.rfind(expected, 0), 0u) << "got '" << error << "', expected '" << expected << "'";
+    EXPECT_EQ(error.rfind(expected, 0), 0u) << "got '" << error << "', expected '" << expected
+                                            << "'";
   }
 }
 
@@ -224,6 +225,36 @@ TEST(CommandLineTest, RunSubcommandDispatchesOnTheFirstArgument) {
   EXPECT_EQ(run({"prog", "rpe"}, &out, &err), kExitUsage);
   EXPECT_EQ(err, std::string("prog: unknown command 'rpe'\n") + kUsage);
   EXPECT_EQ(calls, 1);
+}
+
+// fusemap_offline's and fusemapd's lines (still parsed by hand): required paths, flags that
+// switch something off, a repeated --threads N in 1..64 (the last wins), any finite offset.
+TEST(CommandLineTest, ExpressesTheOfflineRunnersCommandLine) {
+  std::string log, config, out, relations;
+  bool loop_closure = true, quiet = false;
+  int threads = 1;
+  double relations_time_offset_s = 0.0;
+  CommandLine command_line("fusemap_offline", kUsage);
+  command_line.AddString("--log", &log, CommandLine::Required::kYes);
+  command_line.AddString("--config", &config, CommandLine::Required::kYes);
+  command_line.AddString("--out", &out, CommandLine::Required::kYes);
+  command_line.AddFlag("--no-loop-closure", &loop_closure, false);
+  command_line.AddFlag("--quiet", &quiet);
+  command_line.AddInt("--threads", &threads, 1, 64);
+  command_line.AddString("--relations", &relations);
+  command_line.AddDouble("--relations-time-offset", &relations_time_offset_s);
+  std::string error;
+  ASSERT_EQ(command_line.Parse({"--log", "a.lcm", "--config", "c.yaml", "--out", "o", "--threads",
+                                "4", "--no-loop-closure", "--relations-time-offset", "-1e9",
+                                "--threads", "2"},
+                               &error),
+            Status::kOk)
+      << error;
+  EXPECT_EQ(threads, 2);
+  EXPECT_FALSE(loop_closure);
+  EXPECT_FALSE(quiet);
+  EXPECT_EQ(relations_time_offset_s, -1e9);
+  EXPECT_EQ(out, "o");
 }
 
 TEST(CommandLineTest, UsageErrorPrintsProgramMessageAndUsage) {

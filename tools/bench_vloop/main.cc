@@ -107,7 +107,8 @@ int Benchmark(const Args& args) {
 
   auto start = Clock::now();
   std::string error;
-  const std::optional<visual_loop::Vocabulary> vocabulary = visual_loop::Vocabulary::Load(args.vocabulary_path, &error);
+  const std::optional<visual_loop::Vocabulary> vocabulary =
+      visual_loop::Vocabulary::Load(args.vocabulary_path, &error);
   const double load_ms = Ms(start);
   if (!vocabulary) {
     std::fprintf(stderr, "error: %s\n", error.c_str());

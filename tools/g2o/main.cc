@@ -37,8 +37,8 @@ int Optimise(const Args& args) {
     return 1;
   }
   fusemap::pose_graph::Se2Graph& graph = file.graph;
-  std::printf("%s: %zu vertices, %zu edges, %d fixed\n", args.in_path.c_str(), graph.vertices.size(),
-              graph.edges.size(), file.num_fixed);
+  std::printf("%s: %zu vertices, %zu edges, %d fixed\n", args.in_path.c_str(),
+              graph.vertices.size(), graph.edges.size(), file.num_fixed);
   for (const auto& [tag, count] : file.skipped_tags) {
     std::printf("skipped %d lines with unsupported tag %s\n", count, tag.c_str());
   }
@@ -57,7 +57,8 @@ int Optimise(const Args& args) {
               2.0 * summary.final_cost,
               summary.converged ? "converged" : "NOT converged (iteration limit or failure)");
   if (!std::isfinite(summary.initial_cost) || !std::isfinite(summary.final_cost)) {
-    std::fprintf(stderr, "fusemap_g2o: %s: optimisation failed: cost is not finite (initial %g, final %g)\n",
+    std::fprintf(stderr,
+                 "fusemap_g2o: %s: optimisation failed: cost is not finite (initial %g, final %g)\n",
                  args.in_path.c_str(), summary.initial_cost, summary.final_cost);
     return 1;
   }

@@ -49,7 +49,8 @@ int Detect(const DetectArgs& args) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
     return common::kExitFailure;
   }
-  const std::optional<visual_loop::Vocabulary> vocabulary = LoadVocabularyOrReport(VocabularyPath(args.vocabulary));
+  const std::optional<visual_loop::Vocabulary> vocabulary =
+      LoadVocabularyOrReport(VocabularyPath(args.vocabulary));
   if (!vocabulary) return common::kExitFailure;
 
   const visual_loop::OrbExtractor extractor{visual_loop::OrbOptions{}};

@@ -29,7 +29,8 @@ bool LoadDepth(const std::string& path, double scale, const cv::Size& size, cv::
   const cv::Mat raw = ReadImage(path, cv::IMREAD_ANYDEPTH);
   if (raw.empty()) return false;
   if (raw.type() != CV_16UC1 || raw.size() != size) {
-    std::fprintf(stderr, "error: %s: depth must be 16-bit and the colour image's size\n", path.c_str());
+    std::fprintf(stderr, "error: %s: depth must be 16-bit and the colour image's size\n",
+                 path.c_str());
     return false;
   }
   *depth_m = visual_loop::DepthToMeters(raw, scale);
