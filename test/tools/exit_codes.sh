@@ -96,6 +96,10 @@ usage fusemap_sim "--threads 0" "--threads: '0'" --world w.yaml --out "$work/sim
 usage fusemap_sim "--seed -1" "--seed: '-1'" --world w.yaml --out "$work/sim" --seed -1
 usage fusemap_sim "--seconds nan" "--seconds: 'nan'" --world w.yaml --out "$work/sim" --seconds nan
 usage fusemap_sim "without --out" "missing required option --out" --world w.yaml
+# Checked against the simulation's own limits before the world is read.
+usage fusemap_sim "--seconds -5" "seconds must be in" --world w.yaml --out "$work/sim" --seconds -5
+usage fusemap_sim "--laser-rate 0" "rate_hz must be in" --world w.yaml --out "$work/sim" \
+  --laser-rate 0
 usage fusemap_cloudeval "--camera-height-m 0" "--camera-height-m: '0'" --cloud c.ply --world w.yaml \
   --camera-height-m 0
 usage fusemap_bench_cloud "--sizes 1,0" "--sizes: '0'" --sizes 1,0

@@ -52,6 +52,9 @@ std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
   command_line.AddInt("--threads", &args->threads, 1, 64);
   if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return exit_code;
   args->options.seed = static_cast<uint64_t>(seed);
+  // A duration or rate out of the simulation's range came from this command line: usage.
+  std::string error;
+  if (!args->options.IsValid(&error)) return command_line.UsageError(error);
   return std::nullopt;
 }
 
