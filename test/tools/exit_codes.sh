@@ -113,6 +113,7 @@ usage fusemap_eval "relations --max-time-gap -1" "--max-time-gap: '-1'" relation
 usage fusemap_tagscore "groundtruth without --tags" "missing required option --tags" groundtruth \
   --log l.lcm --out gt.tum
 usage fusemap_tagscore "detect without images" "missing IMAGE" detect
+usage fusemap_tagscore "detect --family nope" "family 'nope'" detect x.png --family nope
 usage fusemap_vloop "match with one image" "missing B" match a.png
 usage fusemap_vloop "detect --intrinsics 1,2,3" "--intrinsics: '1,2,3'" detect "$work" \
   --intrinsics 1,2,3

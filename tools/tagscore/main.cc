@@ -222,6 +222,8 @@ int RunDetect(int argc, char** argv) {
   command_line.AddString("--family", &args.options.family);
   command_line.AddFlag("--refine-edges", &args.options.refine_edges);
   if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  std::string error;
+  if (!args.options.IsValid(&error)) return command_line.UsageError(error);  // --family
   return Detect(args);
 }
 
