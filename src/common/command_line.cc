@@ -226,11 +226,10 @@ CommandLine::Status CommandLine::Parse(const std::vector<std::string>& args, std
     }
   }
   if (help) return Status::kHelp;
-  if (first_error.empty() && num_positionals < positionals_.size()) {
+  if (num_positionals < positionals_.size()) {
     fail("missing " + positionals_[num_positionals].first);
-  }
-  if (first_error.empty() && positional_list_ != nullptr &&
-      num_positionals < positionals_.size() + positional_list_min_) {
+  } else if (positional_list_ != nullptr &&
+             num_positionals < positionals_.size() + positional_list_min_) {
     fail("missing " + positional_list_name_);
   }
   for (const Option& option : options_) {
