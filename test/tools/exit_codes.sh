@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every binary's exit codes as README "Exit codes" lists them: --help 0, a command-line usage
-# error 2, bad input 1; and fusemap_carmen2lcm's refusals (issue 18 items 11 and 13).
+# error 2, bad input 1; fusemap_carmen2lcm's refusals (issue 18 items 11 and 13); usage errors
+# naming the option (issue 16).
 # Usage: exit_codes.sh NAME=PATH...
 set -u
 declare -A bin
@@ -35,7 +36,7 @@ for name in "${!bin[@]}"; do
   expect 2 "$name with an unknown flag" "${bin[$name]}" --no-such-flag-xyz
 done
 for name in fusemap_carmen2lcm fusemap_eval fusemap_tagscore fusemap_offline fusemapd fusemap_sim \
-            fusemap_g2o fusemap_cloudeval; do
+            fusemap_g2o fusemap_cloudeval fusemap_vloop fusemap_bench_images; do
   [[ -n ${bin[$name]:-} ]] && expect 2 "$name without arguments" "${bin[$name]}"
 done
 
@@ -78,5 +79,54 @@ if [[ -n ${bin[fusemap_tagscore]:-} ]]; then
   expect 1 "fusemap_tagscore detect on a missing image" "${bin[fusemap_tagscore]}" detect \
     "$work/missing.png"
 fi
+# Usage errors name the option (common::CommandLine): a bad number, a missing value, a missing
+# argument; subcommands take --help.
+# usage NAME DESCRIPTION TEXT ARGS...: exit 2 and stderr containing TEXT.
+usage() {
+  local name=$1 what=$2 text=$3
+  shift 3
+  [[ -n ${bin[$name]:-} ]] || return 0
+  expect 2 "$name $what" "${bin[$name]}" "$@"
+  stderr_has "$text" "$name $what"
+}
+usage fusemap_g2o "--iterations 0" "--iterations: '0'" "$work/x.g2o" --iterations 0
+usage fusemap_g2o "--huber without a value" "--huber needs a value" "$work/x.g2o" --huber
+usage fusemap_g2o "two inputs" "unexpected argument" "$work/x.g2o" "$work/y.g2o"
+usage fusemap_sim "--threads 0" "--threads: '0'" --world w.yaml --out "$work/sim" --threads 0
+usage fusemap_sim "--seed -1" "--seed: '-1'" --world w.yaml --out "$work/sim" --seed -1
+usage fusemap_sim "--seconds nan" "--seconds: 'nan'" --world w.yaml --out "$work/sim" --seconds nan
+usage fusemap_sim "without --out" "missing required option --out" --world w.yaml
+# Checked against the simulation's own limits before the world is read.
+usage fusemap_sim "--seconds -5" "seconds must be in" --world w.yaml --out "$work/sim" --seconds -5
+usage fusemap_sim "--laser-rate 0" "rate_hz must be in" --world w.yaml --out "$work/sim" \
+  --laser-rate 0
+usage fusemap_cloudeval "--camera-height-m 0" "--camera-height-m: '0'" --cloud c.ply --world w.yaml \
+  --camera-height-m 0
+usage fusemap_bench_cloud "--sizes 1,0" "--sizes: '0'" --sizes 1,0
+usage fusemap_bench_cloud "--sizes without a value" "--sizes needs a value" --sizes
+usage fusemap_bench_vloop "--rounds 0" "--rounds: '0'" --rounds 0
+usage fusemap_bench_vloop "--keyframes x" "--keyframes: 'x'" --keyframes x
+usage fusemap_eval "rpe --delta-unit km" "--delta-unit: 'km'" rpe --gt a.tum --est b.tum \
+  --delta-unit km
+usage fusemap_eval "relations --max-time-gap -1" "--max-time-gap: '-1'" relations \
+  --relations r --trajectory t --max-time-gap -1
+usage fusemap_tagscore "groundtruth without --tags" "missing required option --tags" groundtruth \
+  --log l.lcm --out gt.tum
+usage fusemap_tagscore "detect without images" "missing IMAGE" detect
+usage fusemap_tagscore "detect --family nope" "family 'nope'" detect x.png --family nope
+usage fusemap_vloop "match with one image" "missing B" match a.png
+usage fusemap_vloop "detect --intrinsics 1,2,3" "--intrinsics: '1,2,3'" detect "$work" \
+  --intrinsics 1,2,3
+usage fusemap_vloop "train-vocabulary --k 1" "branching" train-vocabulary v.bin "$work" --k 1
+usage fusemap_bench_images "contact-sheet without images" "missing IMAGE" contact-sheet --out x.png
+usage fusemap_bench_images "unknown command" "unknown command 'nonsense'" nonsense
+for command in "fusemap_eval ate" "fusemap_eval rpe" "fusemap_eval relations" \
+               "fusemap_tagscore detect" "fusemap_tagscore score" "fusemap_vloop match" \
+               "fusemap_vloop detect" "fusemap_vloop train-vocabulary" \
+               "fusemap_bench_images contact-sheet"; do
+  name=${command%% *}
+  [[ -n ${bin[$name]:-} ]] && expect 0 "$command --help" "${bin[$name]}" "${command#* }" --help
+done
+
 echo "exit code checks: $failures failure(s)"
 [[ $failures -eq 0 ]]

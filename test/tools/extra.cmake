@@ -1,7 +1,7 @@
 # Exit codes of every binary under tools/ (README "Exit codes"); the ones not built are left out.
 set(tools_exit_code_args)
 foreach(tool fusemap_carmen2lcm fusemap_offline fusemapd fusemap_cloudeval fusemap_bench_cloud
-             fusemap_g2o fusemap_tagscore)
+             fusemap_g2o fusemap_tagscore fusemap_vloop fusemap_bench_vloop fusemap_bench_images)
   if(TARGET ${tool})
     list(APPEND tools_exit_code_args ${tool}=$<TARGET_FILE:${tool}>)
   endif()

@@ -6,13 +6,12 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "fusemap/cloud/cloud_binder.h"
+#include "fusemap/common/command_line.h"
 
 namespace {
 
@@ -26,15 +25,14 @@ using fusemap::common::Rigid3d;
 constexpr int kNumSubmaps = 200;
 constexpr int kPointsPerFrame = 20000;
 
-void PrintUsage() {
-  std::printf(
-      "usage: fusemap_bench_cloud [--sizes 1,5,20]\n"
-      "Builds synthetic cloud maps of the given sizes (millions of points) over %d submaps,\n"
-      "moves 1, 10 and 50 submaps and prints one line per case:\n"
-      "  points=... moved_regions=... moved_points=... update_ms=...\n"
-      "then the per-frame dynamic-removal cost and peak RSS.\n",
-      kNumSubmaps);
-}
+const std::string kUsage =
+    "usage: fusemap_bench_cloud [--sizes 1,5,20]\n"
+    "Builds synthetic cloud maps of the given sizes (millions of points) over " +
+    std::to_string(kNumSubmaps) +
+    " submaps,\n"
+    "moves 1, 10 and 50 submaps and prints one line per case:\n"
+    "  points=... moved_regions=... moved_points=... update_ms=...\n"
+    "then the per-frame dynamic-removal cost and peak RSS.\n";
 
 double PeakRssMb() {
   std::ifstream status("/proc/self/status");
@@ -150,38 +148,22 @@ void RunCarving() {
               binder.options().dynamic_ray_stride, carve_ms / kFrames);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  std::vector<double> sizes = {1, 5, 20};
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-      PrintUsage();
-      return 0;
-    }
-    if (std::strcmp(argv[i], "--sizes") == 0 && i + 1 < argc) {
-      sizes.clear();
-      std::stringstream list(argv[++i]);
-      std::string item;
-      while (std::getline(list, item, ',')) {
-        char* end = nullptr;
-        const double value = std::strtod(item.c_str(), &end);
-        if (end == item.c_str() || *end != '\0' || !(value > 0.0) || value > 100.0) {
-          std::fprintf(stderr, "error: --sizes: '%s' is not a size in (0, 100] million\n",
-                       item.c_str());
-          return 2;
-        }
-        sizes.push_back(value);
-      }
-      continue;
-    }
-    std::fprintf(stderr, "error: unknown argument '%s' (see --help)\n", argv[i]);
-    return 2;
-  }
-  for (const double size : sizes) {
+// Every size, then the carving cost and peak memory: 0, or 1 if a size failed.
+int RunBenchmarks(const std::vector<double>& sizes_million) {
+  for (const double size : sizes_million) {
     if (!RunSize(size)) return 1;
   }
   RunCarving();
   std::printf("peak_rss_mb=%.0f\n", PeakRssMb());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::vector<double> sizes_million = {1, 5, 20};
+  fusemap::common::CommandLine command_line("fusemap_bench_cloud", kUsage);
+  command_line.AddDoubleList("--sizes", &sizes_million, {0.0, 100.0, true});
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return *exit_code;
+  return RunBenchmarks(sizes_million);
 }

@@ -1,11 +1,10 @@
 // fusemap_bench_images: the pictures of tools/bench_logs.sh. A reference map drawn from a log's
 // scans at GMapping's poses with our own grid code, a side-by-side of two maps, a contact sheet.
 #include <cstdio>
-#include <cstdlib>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/io/image_panels.h"
 #include "fusemap/io/reference_map.h"
 #include "fusemap/io/slam_config.h"
@@ -28,139 +27,96 @@ constexpr char kUsage[] =
     "      tiles the images, each scaled to --width pixels\n"
     "Exit codes: 0 success, 1 bad input or failed write, 2 usage error.\n";
 
-int Usage(const std::string& error) {
-  std::fprintf(stderr, "fusemap_bench_images: %s\n%s", error.c_str(), kUsage);
-  return 2;
-}
-
 int Fail(const std::string& error) {
   std::fprintf(stderr, "fusemap_bench_images: %s\n", error.c_str());
   return 1;
 }
 
-// `--key value` pairs from argv[2..] into *values; other words into *positional.
-bool ParseArgs(int argc, char** argv, std::map<std::string, std::string>* values,
-               std::vector<std::string>* positional, std::string* error) {
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind("--", 0) != 0) {
-      positional->push_back(arg);
-    } else if (i + 1 < argc) {
-      (*values)[arg] = argv[++i];
-    } else {
-      *error = "option " + arg + " needs a value";
-      return false;
-    }
-  }
-  return true;
-}
+using common::CommandLine;
 
-// All `required` options given, and nothing but them and `optional`.
-bool CheckOptions(const std::map<std::string, std::string>& values,
-                  const std::vector<std::string>& required, const std::vector<std::string>& optional,
-                  std::string* error) {
-  for (const std::string& key : required) {
-    if (values.count(key) == 0) {
-      *error = "missing " + key;
-      return false;
-    }
-  }
-  for (const auto& [key, value] : values) {
-    bool known = false;
-    for (const std::string& k : required) known = known || k == key;
-    for (const std::string& k : optional) known = known || k == key;
-    if (!known) {
-      *error = "unknown option " + key;
-      return false;
-    }
-  }
-  return true;
-}
+struct ReferenceMapArgs {
+  std::string log_path, poses_path, config_path, out_path, anchor_path;
+};
 
-int RunReferenceMap(std::map<std::string, std::string>& a) {
+int ReferenceMap(const ReferenceMapArgs& a) {
   std::string error;
   io::SlamConfig config;
   eval::Trajectory poses, anchor;
-  if (!io::LoadSlamConfig(a["--config"], &config, &error) ||
-      !io::ReadTumTrajectoryFile(a["--poses"], &poses, &error)) {
+  if (!io::LoadSlamConfig(a.config_path, &config, &error) ||
+      !io::ReadTumTrajectoryFile(a.poses_path, &poses, &error)) {
     return Fail(error);
   }
   common::Rigid2d T_out_map;
-  if (a.count("--anchor") > 0) {
-    if (!io::ReadTumTrajectoryFile(a["--anchor"], &anchor, &error)) return Fail(error);
+  if (!a.anchor_path.empty()) {
+    if (!io::ReadTumTrajectoryFile(a.anchor_path, &anchor, &error)) return Fail(error);
     if (!io::AnchorOnFirstPose(poses, anchor, &T_out_map)) {
-      return Fail(a["--poses"] + ": no pose at the first stamp of " + a["--anchor"]);
+      return Fail(a.poses_path + ": no pose at the first stamp of " + a.anchor_path);
     }
   }
   io::ReferenceMap map;
-  if (!io::RenderLogAtPoses(a["--log"], config, poses, T_out_map, &map, &error) ||
-      !io::WriteMapPng(map.map, map.trajectory_xy, a["--out"], &error)) {
+  if (!io::RenderLogAtPoses(a.log_path, config, poses, T_out_map, &map, &error) ||
+      !io::WriteMapPng(map.map, map.trajectory_xy, a.out_path, &error)) {
     return Fail(error);
   }
   std::printf("reference_map: scans=%d drawn=%d width_px=%d height_px=%d resolution_m=%g wrote=%s\n",
               map.scans_read, map.scans_used, map.map.width, map.map.height,
-              map.map.resolution_m, a["--out"].c_str());
+              map.map.resolution_m, a.out_path.c_str());
   return 0;
 }
 
-bool PositiveInt(const std::string& text, int* value) {
-  char* end = nullptr;
-  const long parsed = std::strtol(text.c_str(), &end, 10);
-  if (end == text.c_str() || *end != '\0' || parsed < 1 || parsed > 100000) return false;
-  *value = static_cast<int>(parsed);
-  return true;
+int RunReferenceMap(int argc, char** argv) {
+  ReferenceMapArgs args;
+  CommandLine command_line("fusemap_bench_images reference-map", kUsage);
+  command_line.AddString("--log", &args.log_path, CommandLine::Required::kYes);
+  command_line.AddString("--poses", &args.poses_path, CommandLine::Required::kYes);
+  command_line.AddString("--config", &args.config_path, CommandLine::Required::kYes);
+  command_line.AddString("--out", &args.out_path, CommandLine::Required::kYes);
+  command_line.AddString("--anchor", &args.anchor_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  return ReferenceMap(args);
+}
+
+int RunSideBySide(int argc, char** argv) {
+  std::string left, left_title, right, right_title, title, out;
+  CommandLine command_line("fusemap_bench_images side-by-side", kUsage);
+  command_line.AddString("--left", &left, CommandLine::Required::kYes);
+  command_line.AddString("--left-title", &left_title, CommandLine::Required::kYes);
+  command_line.AddString("--right", &right, CommandLine::Required::kYes);
+  command_line.AddString("--right-title", &right_title, CommandLine::Required::kYes);
+  command_line.AddString("--title", &title, CommandLine::Required::kYes);
+  command_line.AddString("--out", &out, CommandLine::Required::kYes);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  std::string error;
+  if (!io::WriteSideBySideFile(left, left_title, right, right_title, title, out, &error)) {
+    return Fail(error);
+  }
+  std::printf("wrote %s\n", out.c_str());
+  return 0;
+}
+
+int RunContactSheet(int argc, char** argv) {
+  std::string out;
+  int columns = 2, width_px = 1200;
+  std::vector<std::string> images;
+  CommandLine command_line("fusemap_bench_images contact-sheet", kUsage);
+  command_line.AddString("--out", &out, CommandLine::Required::kYes);
+  command_line.AddInt("--columns", &columns, 1, 100000);
+  command_line.AddInt("--width", &width_px, 1, 100000);
+  command_line.AddPositionalList("IMAGE", &images, 1);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  std::string error;
+  if (!io::WriteContactSheetFile(images, columns, width_px, out, &error)) return Fail(error);
+  std::printf("wrote %s (%zu images)\n", out.c_str(), images.size());
+  return 0;
 }
 
 }  // namespace
 }  // namespace fusemap
 
 int main(int argc, char** argv) {
-  using fusemap::Fail;
-  using fusemap::Usage;
-  if (argc < 2) return Usage("missing command");
-  const std::string command = argv[1];
-  if (command == "--help" || command == "-h") {
-    std::printf("%s", fusemap::kUsage);
-    return 0;
-  }
-  std::map<std::string, std::string> a;
-  std::vector<std::string> positional;
-  std::string error;
-  if (!fusemap::ParseArgs(argc, argv, &a, &positional, &error)) return Usage(error);
-  if (command == "reference-map") {
-    if (!positional.empty()) return Usage("unexpected argument " + positional[0]);
-    if (!fusemap::CheckOptions(a, {"--log", "--poses", "--config", "--out"}, {"--anchor"}, &error)) {
-      return Usage(error);
-    }
-    return fusemap::RunReferenceMap(a);
-  }
-  if (command == "side-by-side") {
-    if (!positional.empty()) return Usage("unexpected argument " + positional[0]);
-    if (!fusemap::CheckOptions(
-            a, {"--left", "--left-title", "--right", "--right-title", "--title", "--out"}, {},
-            &error)) {
-      return Usage(error);
-    }
-    if (!fusemap::io::WriteSideBySideFile(a["--left"], a["--left-title"], a["--right"],
-                                          a["--right-title"], a["--title"], a["--out"], &error)) {
-      return Fail(error);
-    }
-    std::printf("wrote %s\n", a["--out"].c_str());
-    return 0;
-  }
-  if (command == "contact-sheet") {
-    int columns = 2, width_px = 1200;
-    if (!fusemap::CheckOptions(a, {"--out"}, {"--columns", "--width"}, &error)) return Usage(error);
-    if ((a.count("--columns") > 0 && !fusemap::PositiveInt(a["--columns"], &columns)) ||
-        (a.count("--width") > 0 && !fusemap::PositiveInt(a["--width"], &width_px))) {
-      return Usage("--columns and --width take a positive integer");
-    }
-    if (positional.empty()) return Usage("no images given");
-    if (!fusemap::io::WriteContactSheetFile(positional, columns, width_px, a["--out"], &error)) {
-      return Fail(error);
-    }
-    std::printf("wrote %s (%zu images)\n", a["--out"].c_str(), positional.size());
-    return 0;
-  }
-  return Usage("unknown command '" + command + "'");
+  return fusemap::common::RunSubcommand("fusemap_bench_images", fusemap::kUsage,
+                                        {{"reference-map", fusemap::RunReferenceMap},
+                                         {"side-by-side", fusemap::RunSideBySide},
+                                         {"contact-sheet", fusemap::RunContactSheet}},
+                                        argc, argv);
 }

@@ -5,10 +5,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -16,6 +15,7 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/visual_loop/geometric_verifier.h"
 #include "fusemap/visual_loop/keyframe.h"
 #include "fusemap/visual_loop/keyframe_database.h"
@@ -91,41 +91,24 @@ sensor::PinholeIntrinsics Intrinsics(double fx, double fy, double cx, double cy)
   return in;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   std::string data = FUSEMAP_DEFAULT_VISUAL_DATA;
   std::string vocabulary_path = FUSEMAP_DEFAULT_VOCABULARY;
   int num_keyframes = 10000;
   int rounds = 20;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    } else if (arg == "--data" && has_value) {
-      data = argv[++i];
-    } else if (arg == "--vocabulary" && has_value) {
-      vocabulary_path = argv[++i];
-    } else if (arg == "--keyframes" && has_value) {
-      num_keyframes = std::atoi(argv[++i]);
-    } else if (arg == "--rounds" && has_value) {
-      rounds = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "error: bad argument '%s'\n%s", arg.c_str(), kUsage);
-      return 2;
-    }
-  }
-  if (num_keyframes < 1 || rounds < 1) {
-    std::fprintf(stderr, "error: --keyframes and --rounds must be positive\n");
-    return 2;
-  }
+};
+
+// Times the checker and prints the figures: 0, or 1 if the data cannot be read.
+int Benchmark(const Args& args) {
+  const std::string& data = args.data;
+  const int num_keyframes = args.num_keyframes;
+  const int rounds = args.rounds;
   cv::setNumThreads(1);  // one core, as the checker's own thread will have
 
   auto start = Clock::now();
   std::string error;
-  const std::optional<visual_loop::Vocabulary> vocabulary = visual_loop::Vocabulary::Load(vocabulary_path, &error);
+  const std::optional<visual_loop::Vocabulary> vocabulary =
+      visual_loop::Vocabulary::Load(args.vocabulary_path, &error);
   const double load_ms = Ms(start);
   if (!vocabulary) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
@@ -221,4 +204,18 @@ int main(int argc, char** argv) {
   std::printf("vocabulary_load_ms=%.1f words=%d\n", load_ms, vocabulary->num_words());
   std::printf("bytes_per_keyframe=%zu index_bytes_per_keyframe=%zu\n", bytes_per_keyframe, index_bytes_per_keyframe);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  const int kMaxInt = std::numeric_limits<int>::max();
+  fusemap::common::CommandLine command_line("fusemap_bench_vloop", kUsage);
+  command_line.AddString("--data", &args.data);
+  command_line.AddString("--vocabulary", &args.vocabulary_path);
+  command_line.AddInt("--keyframes", &args.num_keyframes, 1, kMaxInt);
+  command_line.AddInt("--rounds", &args.rounds, 1, kMaxInt);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return *exit_code;
+  return Benchmark(args);
 }

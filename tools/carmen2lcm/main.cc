@@ -3,11 +3,12 @@
 // message utime. All interpretation (time policy, range limit, beam angles) lives in
 // io::CarmenReader and is printed in the summary.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/io/carmen_reader.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
@@ -33,69 +34,57 @@ constexpr char kUsage[] =
     "Exit codes: 0 converted, 1 bad input (no CARMEN records, a malformed line without\n"
     "--skip-bad, an unreadable file) or a failed write, 2 command-line usage error.\n";
 
-// Usage errors exit 2 (README "Exit codes").
-int UsageError(const std::string& message) {
-  std::cerr << "fusemap_carmen2lcm: " << message << "\n" << kUsage;
-  return 2;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   fusemap::io::CarmenOptions options;
-  std::string laser_channel = "LIDAR", odom_channel = "ODOMETRY", stamp_map_path;
-  std::string reference_path;
-  std::string positional[2];
-  int n_positional = 0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--help" || arg == "-h") {
-      std::cout << kUsage;
-      return 0;
-    } else if (arg == "--skip-bad") {
-      options.skip_bad = true;
-    } else if (arg == "--range-max" && has_value) {
-      char* end = nullptr;
-      options.range_max_m = std::strtod(argv[++i], &end);
-      if (*end != '\0' || !(options.range_max_m > 0.0)) {
-        return UsageError("--range-max needs a positive number of metres");
-      }
-    } else if (arg == "--laser-channel" && has_value) {
-      laser_channel = argv[++i];
-    } else if (arg == "--odom-channel" && has_value) {
-      odom_channel = argv[++i];
-    } else if (arg == "--stamp-map" && has_value) {
-      stamp_map_path = argv[++i];
-    } else if (arg == "--reference-poses" && has_value) {
-      reference_path = argv[++i];
-    } else if (!arg.empty() && arg[0] != '-' && n_positional < 2) {
-      positional[n_positional++] = arg;
-    } else {
-      return UsageError("unexpected argument '" + arg + "'");
-    }
-  }
-  if (n_positional != 2) return UsageError("needs INPUT and OUTPUT.lcm");
+  std::string input, output;
+  std::string laser_channel = "LIDAR", odom_channel = "ODOMETRY";
+  std::string stamp_map_path, reference_path;
+};
+
+// Fills *args; nullopt to go on, else the exit code (--help 0, usage error 2).
+std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
+  fusemap::common::CommandLine command_line("fusemap_carmen2lcm", kUsage);
+  command_line.AddPositional("INPUT", &args->input);
+  command_line.AddPositional("OUTPUT.lcm", &args->output);
+  command_line.AddFlag("--skip-bad", &args->options.skip_bad);
+  command_line.AddDouble("--range-max", &args->options.range_max_m,
+                         fusemap::common::NumberRange::Positive());
+  command_line.AddString("--laser-channel", &args->laser_channel);
+  command_line.AddString("--odom-channel", &args->odom_channel);
+  command_line.AddString("--stamp-map", &args->stamp_map_path);
+  command_line.AddString("--reference-poses", &args->reference_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return exit_code;
   // Opening the output truncates it: never when it is the input (or the stamp map) under
   // another name. Compared by file identity, so links and "./X" are caught too.
   std::error_code ec;
-  for (const std::string& other : {positional[0], stamp_map_path}) {
-    if (!other.empty() && std::filesystem::equivalent(other, positional[1], ec)) {
-      return UsageError("OUTPUT " + positional[1] + " is the same file as " + other);
+  for (const std::string& other : {args->input, args->stamp_map_path}) {
+    if (!other.empty() && std::filesystem::equivalent(other, args->output, ec)) {
+      return command_line.UsageError("OUTPUT " + args->output + " is the same file as " + other);
     }
   }
-  if (!stamp_map_path.empty() && std::filesystem::equivalent(positional[0], stamp_map_path, ec)) {
-    return UsageError("--stamp-map " + stamp_map_path + " is the same file as INPUT");
+  if (!args->stamp_map_path.empty() &&
+      std::filesystem::equivalent(args->input, args->stamp_map_path, ec)) {
+    return command_line.UsageError("--stamp-map " + args->stamp_map_path +
+                                   " is the same file as INPUT");
   }
+  return std::nullopt;
+}
 
+// Converts the log and prints the summary: 0, or 1 for bad input or a failed write (no
+// half-converted output is left behind).
+int Convert(const Args& args) {
+  const std::string& input = args.input;
+  const std::string& output = args.output;
+  const std::string& stamp_map_path = args.stamp_map_path;
+  const std::string& reference_path = args.reference_path;
   std::string error;
-  fusemap::io::CarmenReader reader(options);
-  if (!reader.Open(positional[0], &error)) {
+  fusemap::io::CarmenReader reader(args.options);
+  if (!reader.Open(input, &error)) {
     std::cerr << error << "\n";
     return 1;
   }
   if (!stamp_map_path.empty() && reader.summary().time_policy == "synthesized") {
-    std::cerr << "--stamp-map: " << positional[0] << " has no usable stamps ("
+    std::cerr << "--stamp-map: " << input << " has no usable stamps ("
               << reader.summary().time_reason << "); time is synthesized from line order\n";
     return 1;
   }
@@ -105,7 +94,7 @@ int main(int argc, char** argv) {
     return 1;
   }
   fusemap::io::LcmLogWriter writer;
-  if (!writer.Open(positional[1], &error)) {
+  if (!writer.Open(output, &error)) {
     std::cerr << error << "\n";
     return 1;
   }
@@ -115,16 +104,16 @@ int main(int argc, char** argv) {
     bool ok = false;
     if (record.kind == fusemap::io::CarmenRecord::Kind::kLaser) {
       const auto bytes = fusemap::io::EncodeLaserScan(record.scan);
-      ok = writer.Write(laser_channel, fusemap::io::StampToUtime(record.scan.stamp_s),
+      ok = writer.Write(args.laser_channel, fusemap::io::StampToUtime(record.scan.stamp_s),
                         bytes.data(), static_cast<int>(bytes.size()));
     } else {
       const auto bytes = fusemap::io::EncodeOdometry(
           record.odometry, record.linear_velocity_mps, record.angular_velocity_radps);
-      ok = writer.Write(odom_channel, fusemap::io::StampToUtime(record.odometry.stamp_s),
+      ok = writer.Write(args.odom_channel, fusemap::io::StampToUtime(record.odometry.stamp_s),
                         bytes.data(), static_cast<int>(bytes.size()));
     }
     if (!ok) {
-      error = positional[1] + ": write failed";
+      error = output + ": write failed";
       break;
     }
     if (record.has_reference_pose) {
@@ -152,7 +141,7 @@ int main(int argc, char** argv) {
   }
   if (!error.empty()) {
     std::cerr << error << "\n";
-    std::remove(positional[1].c_str());  // no half-converted output
+    std::remove(output.c_str());  // no half-converted output
     if (!stamp_map_path.empty()) std::remove(stamp_map_path.c_str());
     if (!reference_path.empty()) std::remove(reference_path.c_str());
     return 1;
@@ -160,18 +149,26 @@ int main(int argc, char** argv) {
   const fusemap::io::CarmenSummary& s = reader.summary();
   for (const std::string& reason : s.first_skip_reasons) std::cerr << "skipped " << reason << "\n";
   if (s.lasers == 0 && s.odometry == 0) {
-    std::cerr << positional[0] << ": no CARMEN records found (" << s.lines
+    std::cerr << input << ": no CARMEN records found (" << s.lines
               << " non-empty lines, none FLASER, ROBOTLASER1 or ODOM); is it a CARMEN log?\n"
               << s.ToString() << "\n";
-    std::remove(positional[1].c_str());
+    std::remove(output.c_str());
     if (!stamp_map_path.empty()) std::remove(stamp_map_path.c_str());
     return 1;
   }
-  std::cout << s.ToString() << " wrote=" << positional[1];
+  std::cout << s.ToString() << " wrote=" << output;
   if (!stamp_map_path.empty()) std::cout << " stamp_map=" << stamp_map_path;
   if (!reference_path.empty()) {
     std::cout << " reference_poses=" << reference.size() << " " << reference_path;
   }
   std::cout << "\n";
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  if (const auto exit_code = ParseArgs(argc, argv, &args)) return *exit_code;
+  return Convert(args);
 }

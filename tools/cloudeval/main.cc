@@ -1,12 +1,13 @@
 // fusemap_cloudeval: scores a coloured cloud map against the simulator's ground-truth world.
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include <pcl/common/transforms.h>
 
 #include "cloud_eval.h"
+#include "fusemap/common/command_line.h"
 #include "fusemap/eval/absolute_trajectory_error.h"
 #include "fusemap/io/cloud_writer.h"
 #include "fusemap/io/tum_trajectory.h"
@@ -47,59 +48,36 @@ bool ReadCloud(const std::string& path, fusemap::cloud::ColorCloud* cloud, std::
   return fusemap::io::ReadCloudPly(path, cloud, error);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   std::string cloud_path, world_path, removed_path, gt_path, est_path;
   double static_tolerance_m = 0.1, camera_height_m = 1.0;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help" || flag == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "fusemap_cloudeval: %s needs a value (or unknown flag)\n%s",
-                   flag.c_str(), kUsage);
-      return 2;
-    }
-    const char* value = argv[++i];
-    if (flag == "--cloud") {
-      cloud_path = value;
-    } else if (flag == "--world") {
-      world_path = value;
-    } else if (flag == "--removed") {
-      removed_path = value;
-    } else if (flag == "--gt") {
-      gt_path = value;
-    } else if (flag == "--est") {
-      est_path = value;
-    } else if (flag == "--camera-height-m") {
-      char* end = nullptr;
-      camera_height_m = std::strtod(value, &end);
-      if (end == value || *end != '\0' || !(camera_height_m > 0.0)) {
-        std::fprintf(stderr, "fusemap_cloudeval: --camera-height-m expects a number > 0, got '%s'\n",
-                     value);
-        return 2;
-      }
-    } else if (flag == "--static-tolerance-m") {
-      char* end = nullptr;
-      static_tolerance_m = std::strtod(value, &end);
-      if (end == value || *end != '\0' || !(static_tolerance_m >= 0.0)) {
-        std::fprintf(stderr, "fusemap_cloudeval: --static-tolerance-m expects a number >= 0, got '%s'\n",
-                     value);
-        return 2;
-      }
-    } else {
-      std::fprintf(stderr, "fusemap_cloudeval: unknown flag %s\n%s", flag.c_str(), kUsage);
-      return 2;
-    }
-  }
-  if (cloud_path.empty() || world_path.empty()) {
-    std::fprintf(stderr, "fusemap_cloudeval: --cloud and --world are required\n%s", kUsage);
-    return 2;
-  }
+};
 
+// Fills *args; nullopt to go on, else the exit code (--help 0, usage error 2).
+std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
+  using fusemap::common::CommandLine;
+  using fusemap::common::NumberRange;
+  CommandLine command_line("fusemap_cloudeval", kUsage);
+  command_line.AddString("--cloud", &args->cloud_path, CommandLine::Required::kYes);
+  command_line.AddString("--world", &args->world_path, CommandLine::Required::kYes);
+  command_line.AddString("--removed", &args->removed_path);
+  command_line.AddString("--gt", &args->gt_path);
+  command_line.AddString("--est", &args->est_path);
+  command_line.AddDouble("--camera-height-m", &args->camera_height_m, NumberRange::Positive());
+  command_line.AddDouble("--static-tolerance-m", &args->static_tolerance_m,
+                         NumberRange::NonNegative());
+  return command_line.ParseOrExitCode(argc, argv);
+}
+
+// Scores the cloud and prints the result lines: 0, or 1 for an unreadable cloud or world.
+int Evaluate(Args args) {
+  const std::string& cloud_path = args.cloud_path;
+  const std::string& world_path = args.world_path;
+  std::string& removed_path = args.removed_path;
+  const std::string& gt_path = args.gt_path;
+  std::string& est_path = args.est_path;
+  const double static_tolerance_m = args.static_tolerance_m;
+  const double camera_height_m = args.camera_height_m;
   std::string error;
   fusemap::sim::World world;
   if (!fusemap::sim::LoadWorldFile(world_path, &world, &error)) {
@@ -168,4 +146,12 @@ int main(int argc, char** argv) {
     std::printf("%s\n", fusemap::cloudeval_tool::FormatLandmarkPair(pair).c_str());
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  if (const auto exit_code = ParseArgs(argc, argv, &args)) return *exit_code;
+  return Evaluate(args);
 }

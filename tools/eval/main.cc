@@ -1,12 +1,9 @@
 // fusemap_eval: trajectory accuracy metrics (Kümmerle relations, ATE, RPE) over TUM files.
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <map>
-#include <set>
 #include <string>
 #include <vector>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/eval/absolute_trajectory_error.h"
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/relative_pose_error.h"
@@ -55,109 +52,42 @@ constexpr char kRpeUsage[] =
     "  --max-time-diff S   association tolerance between stamps (default 0.02)\n"
     "Last line: rpe_trans_rmse_m=... rpe_rot_mean_deg=...\n";
 
-// Parsed `--key value` and `--flag` arguments of one subcommand.
-struct Args {
-  std::map<std::string, std::string> values;
-  std::set<std::string> flags;
-  bool help = false;
-};
+using common::CommandLine;
+using common::NumberRange;
 
-bool ParseArgs(int argc, char** argv, const std::set<std::string>& value_keys,
-               const std::set<std::string>& flag_keys, Args* args, std::string* error) {
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--help" || arg == "-h") {
-      args->help = true;
-    } else if (flag_keys.count(arg) > 0) {
-      args->flags.insert(arg);
-    } else if (value_keys.count(arg) > 0) {
-      if (i + 1 >= argc) {
-        *error = "option " + arg + " needs a value";
-        return false;
-      }
-      args->values[arg] = argv[++i];
-    } else {
-      *error = "unknown argument '" + arg + "'";
-      return false;
-    }
-  }
-  return true;
-}
-
-bool GetRequired(const Args& args, const std::string& key, std::string* value, std::string* error) {
-  const auto it = args.values.find(key);
-  if (it == args.values.end()) {
-    *error = "missing required option " + key;
-    return false;
-  }
-  *value = it->second;
-  return true;
-}
-
-bool GetDouble(const Args& args, const std::string& key, double* value, std::string* error) {
-  const auto it = args.values.find(key);
-  if (it == args.values.end()) return true;
-  char* end = nullptr;
-  const double parsed = std::strtod(it->second.c_str(), &end);
-  if (end == it->second.c_str() || *end != '\0' || !std::isfinite(parsed)) {
-    *error = "option " + key + ": '" + it->second + "' is not a finite number";
-    return false;
-  }
-  *value = parsed;
-  return true;
-}
-
-// Command-line usage errors: exit 2 (bad input files exit 1).
-int Fail(const std::string& error, const char* usage) {
-  std::fprintf(stderr, "fusemap_eval: %s\n%s", error.c_str(), usage);
-  return 2;
-}
-
-int RunRelations(int argc, char** argv) {
-  Args args;
-  std::string error, relations_path, trajectory_path;
+struct RelationsArgs {
+  std::string relations_path, trajectory_path, stamp_map_path;
   double time_offset_s = 0.0;
   double max_time_gap_s = eval::kDefaultRelationMaxTimeGapS;
-  if (!ParseArgs(argc, argv,
-                 {"--relations", "--trajectory", "--time-offset", "--max-time-gap", "--stamp-map"},
-                 {}, &args, &error)) {
-    return Fail(error, kRelationsUsage);
-  }
-  if (args.help) {
-    std::printf("%s", kRelationsUsage);
-    return 0;
-  }
-  if (!GetRequired(args, "--relations", &relations_path, &error) ||
-      !GetRequired(args, "--trajectory", &trajectory_path, &error) ||
-      !GetDouble(args, "--time-offset", &time_offset_s, &error) ||
-      !GetDouble(args, "--max-time-gap", &max_time_gap_s, &error)) {
-    return Fail(error, kRelationsUsage);
-  }
-  if (max_time_gap_s < 0.0) return Fail("--max-time-gap must be >= 0", kRelationsUsage);
+};
+
+// Bad input files and failed runs exit 1 (usage errors exit 2 while parsing).
+int Fail(const std::string& error) {
+  std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
+  return 1;
+}
+
+int Relations(const RelationsArgs& args) {
+  std::string error;
   std::vector<eval::Relation> relations;
   eval::Trajectory trajectory;
-  if (!io::ReadRelationsFile(relations_path, time_offset_s, &relations, &error) ||
-      !io::ReadTumTrajectoryFile(trajectory_path, &trajectory, &error)) {
-    std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
-    return 1;
+  if (!io::ReadRelationsFile(args.relations_path, args.time_offset_s, &relations, &error) ||
+      !io::ReadTumTrajectoryFile(args.trajectory_path, &trajectory, &error)) {
+    return Fail(error);
   }
-  auto stamp_map = args.values.find("--stamp-map");
-  if (stamp_map != args.values.end()) {
+  if (!args.stamp_map_path.empty()) {
     std::string summary;
-    if (!io::MapRelationsThroughStampMapFile(stamp_map->second, &relations, &summary, &error)) {
-      std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
-      return 1;
+    if (!io::MapRelationsThroughStampMapFile(args.stamp_map_path, &relations, &summary, &error)) {
+      return Fail(error);
     }
     std::printf("%s\n", summary.c_str());
   }
-  const eval::RelationError r = eval::EvaluateRelations(trajectory, relations, max_time_gap_s);
+  const eval::RelationError r = eval::EvaluateRelations(trajectory, relations, args.max_time_gap_s);
   std::printf("relations=%zu used=%d skipped=%d trajectory_poses=%zu\n", relations.size(),
               r.count_used, r.count_skipped, trajectory.size());
   if (r.count_used == 0) {
-    std::fprintf(stderr,
-                 "fusemap_eval: no relation has trajectory poses near both stamps "
-                 "(check --time-offset and --max-time-gap)\n");
-    return 1;
+    return Fail("no relation has trajectory poses near both stamps "
+                "(check --time-offset and --max-time-gap)");
   }
   std::printf(
       "trans_sq_mean_m2=%.6g trans_sq_std_m2=%.6g rot_sq_mean_deg2=%.6g "
@@ -168,49 +98,45 @@ int RunRelations(int argc, char** argv) {
   return 0;
 }
 
-// --gt and --est: 2 when missing, 1 when unreadable, 0 when both were read.
-int ReadPair(const Args& args, const char* usage, eval::Trajectory* gt, eval::Trajectory* est) {
-  std::string gt_path, est_path, error;
-  if (!GetRequired(args, "--gt", &gt_path, &error) ||
-      !GetRequired(args, "--est", &est_path, &error)) {
-    return Fail(error, usage);
-  }
-  if (!io::ReadTumTrajectoryFile(gt_path, gt, &error) ||
-      !io::ReadTumTrajectoryFile(est_path, est, &error)) {
-    std::fprintf(stderr, "fusemap_eval: %s\n", error.c_str());
-    return 1;
-  }
-  return 0;
+int RunRelations(int argc, char** argv) {
+  RelationsArgs args;
+  CommandLine command_line("fusemap_eval relations", kRelationsUsage);
+  command_line.AddString("--relations", &args.relations_path, CommandLine::Required::kYes);
+  command_line.AddString("--trajectory", &args.trajectory_path, CommandLine::Required::kYes);
+  command_line.AddDouble("--time-offset", &args.time_offset_s);
+  command_line.AddDouble("--max-time-gap", &args.max_time_gap_s, NumberRange::NonNegative());
+  command_line.AddString("--stamp-map", &args.stamp_map_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  return Relations(args);
 }
 
-int RunAte(int argc, char** argv) {
-  Args args;
+// The ground truth and estimate of ate and rpe.
+struct PairArgs {
+  std::string gt_path, est_path;
+};
+
+void AddPairOptions(CommandLine* command_line, PairArgs* args) {
+  command_line->AddString("--gt", &args->gt_path, CommandLine::Required::kYes);
+  command_line->AddString("--est", &args->est_path, CommandLine::Required::kYes);
+}
+
+bool ReadPair(const PairArgs& args, eval::Trajectory* gt, eval::Trajectory* est) {
   std::string error;
-  eval::AteOptions options;
-  if (!ParseArgs(argc, argv, {"--gt", "--est", "--max-time-diff", "--interpolate"},
-                 {"--no-align", "--se2"}, &args, &error)) {
-    return Fail(error, kAteUsage);
+  if (!io::ReadTumTrajectoryFile(args.gt_path, gt, &error) ||
+      !io::ReadTumTrajectoryFile(args.est_path, est, &error)) {
+    Fail(error);
+    return false;
   }
-  if (args.help) {
-    std::printf("%s", kAteUsage);
-    return 0;
-  }
-  options.align = args.flags.count("--no-align") == 0;
-  options.planar = args.flags.count("--se2") > 0;
+  return true;
+}
+
+int Ate(const PairArgs& args, const eval::AteOptions& options) {
   eval::Trajectory gt, est;
-  if (!GetDouble(args, "--max-time-diff", &options.max_time_diff_s, &error) ||
-      !GetDouble(args, "--interpolate", &options.interpolate_max_gap_s, &error) ||
-      !options.IsValid(&error)) {
-    return Fail(error, kAteUsage);
-  }
-  if (const int status = ReadPair(args, kAteUsage, &gt, &est); status != 0) return status;
+  if (!ReadPair(args, &gt, &est)) return 1;
   const eval::AteResult r = eval::ComputeAte(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu associated=%d aligned=%s\n", gt.size(), est.size(),
               r.trans_m.count, !options.align ? "no" : (options.planar ? "se2" : "se3"));
-  if (r.trans_m.count == 0) {
-    std::fprintf(stderr, "fusemap_eval: no estimated pose within --max-time-diff of the gt\n");
-    return 1;
-  }
+  if (r.trans_m.count == 0) return Fail("no estimated pose within --max-time-diff of the gt");
   std::printf("T_gt_est=%s unaligned_rmse_m=%.6g\n", r.T_gt_est.DebugString().c_str(),
               r.unaligned_rmse_m);
   std::printf("ate_mean_m=%.6g ate_median_m=%.6g ate_max_m=%.6g\n", r.trans_m.mean,
@@ -219,63 +145,56 @@ int RunAte(int argc, char** argv) {
   return 0;
 }
 
-int RunRpe(int argc, char** argv) {
-  Args args;
+int RunAte(int argc, char** argv) {
+  PairArgs args;
+  eval::AteOptions options;
+  CommandLine command_line("fusemap_eval ate", kAteUsage);
+  AddPairOptions(&command_line, &args);
+  command_line.AddFlag("--no-align", &options.align, false);
+  command_line.AddFlag("--se2", &options.planar);
+  command_line.AddDouble("--max-time-diff", &options.max_time_diff_s);
+  command_line.AddDouble("--interpolate", &options.interpolate_max_gap_s);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
   std::string error;
-  eval::RpeOptions options;
-  if (!ParseArgs(argc, argv, {"--gt", "--est", "--delta", "--delta-unit", "--max-time-diff"}, {},
-                 &args, &error)) {
-    return Fail(error, kRpeUsage);
-  }
-  if (args.help) {
-    std::printf("%s", kRpeUsage);
-    return 0;
-  }
-  const auto unit = args.values.find("--delta-unit");
-  if (unit != args.values.end()) {
-    if (unit->second == "m") {
-      options.delta_unit = eval::DeltaUnit::kMetres;
-    } else if (unit->second == "s") {
-      options.delta_unit = eval::DeltaUnit::kSeconds;
-    } else {
-      return Fail("--delta-unit must be 'm' or 's', got '" + unit->second + "'", kRpeUsage);
-    }
-  }
+  if (!options.IsValid(&error)) return command_line.UsageError(error);
+  return Ate(args, options);
+}
+
+int Rpe(const PairArgs& args, const eval::RpeOptions& options) {
   eval::Trajectory gt, est;
-  if (!GetDouble(args, "--delta", &options.delta, &error) ||
-      !GetDouble(args, "--max-time-diff", &options.max_time_diff_s, &error) ||
-      !options.IsValid(&error)) {
-    return Fail(error, kRpeUsage);
-  }
-  if (const int status = ReadPair(args, kRpeUsage, &gt, &est); status != 0) return status;
+  if (!ReadPair(args, &gt, &est)) return 1;
   const eval::RpeResult r = eval::ComputeRpe(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu pairs=%d\n", gt.size(), est.size(), r.trans_m.count);
-  if (r.trans_m.count == 0) {
-    std::fprintf(stderr, "fusemap_eval: no pose pair spans --delta (or nothing associated)\n");
-    return 1;
-  }
+  if (r.trans_m.count == 0) return Fail("no pose pair spans --delta (or nothing associated)");
   std::printf("rpe_trans_mean_m=%.6g rpe_trans_median_m=%.6g rpe_rot_rmse_deg=%.6g\n",
               r.trans_m.mean, r.trans_m.median, r.rot_deg.rmse);
   std::printf("rpe_trans_rmse_m=%.6g rpe_rot_mean_deg=%.6g\n", r.trans_m.rmse, r.rot_deg.mean);
   return 0;
 }
 
+int RunRpe(int argc, char** argv) {
+  PairArgs args;
+  eval::RpeOptions options;
+  std::string unit = options.delta_unit == eval::DeltaUnit::kSeconds ? "s" : "m";
+  CommandLine command_line("fusemap_eval rpe", kRpeUsage);
+  AddPairOptions(&command_line, &args);
+  command_line.AddDouble("--delta", &options.delta);
+  command_line.AddChoice("--delta-unit", &unit, {"m", "s"});
+  command_line.AddDouble("--max-time-diff", &options.max_time_diff_s);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  options.delta_unit = unit == "s" ? eval::DeltaUnit::kSeconds : eval::DeltaUnit::kMetres;
+  std::string error;
+  if (!options.IsValid(&error)) return command_line.UsageError(error);
+  return Rpe(args, options);
+}
+
 }  // namespace
 }  // namespace fusemap
 
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "%s", fusemap::kUsage);
-    return 2;
-  }
-  const std::string command = argv[1];
-  if (command == "--help" || command == "-h") {
-    std::printf("%s", fusemap::kUsage);
-    return 0;
-  }
-  if (command == "relations") return fusemap::RunRelations(argc, argv);
-  if (command == "ate") return fusemap::RunAte(argc, argv);
-  if (command == "rpe") return fusemap::RunRpe(argc, argv);
-  std::fprintf(stderr, "fusemap_eval: unknown command '%s'\n%s", command.c_str(), fusemap::kUsage);
-  return 2;
+  return fusemap::common::RunSubcommand("fusemap_eval", fusemap::kUsage,
+                                        {{"relations", fusemap::RunRelations},
+                                         {"ate", fusemap::RunAte},
+                                         {"rpe", fusemap::RunRpe}},
+                                        argc, argv);
 }

@@ -2,10 +2,9 @@
 // of fusemap_pose_graph and prints the costs. See --help.
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <string>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/io/g2o_reader.h"
 #include "fusemap/pose_graph/optimization_options.h"
 #include "fusemap/pose_graph/se2_graph.h"
@@ -24,80 +23,22 @@ constexpr char kUsage[] =
     "                  then a plain pass from its result; 0 = one plain pass (default 1)\n"
     "  --out OUT.g2o   write the optimised graph\n";
 
-bool ParseArgs(int argc, char** argv, std::string* in_path, std::string* out_path,
-               fusemap::pose_graph::OptimizationOptions* options, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    const bool has_value = i + 1 < argc;
-    if (arg == "--iterations" || arg == "--huber" || arg == "--out") {
-      if (!has_value) {
-        *error = arg + " needs a value";
-        return false;
-      }
-      const std::string value = argv[++i];
-      char* end = nullptr;
-      if (arg == "--out") {
-        *out_path = value;
-      } else if (arg == "--iterations") {
-        const long n = std::strtol(value.c_str(), &end, 10);
-        if (end == value.c_str() || *end != '\0' || n < 1 || n > 1000000) {
-          *error = "--iterations wants a positive integer, not '" + value + "'";
-          return false;
-        }
-        options->max_num_iterations = static_cast<int>(n);
-      } else {
-        options->huber_scale = std::strtod(value.c_str(), &end);
-        if (end == value.c_str() || *end != '\0') {
-          *error = "--huber wants a number, not '" + value + "'";
-          return false;
-        }
-      }
-    } else if (arg.size() > 1 && arg[0] == '-') {
-      *error = "unknown option " + arg;
-      return false;
-    } else if (in_path->empty()) {
-      *in_path = arg;
-    } else {
-      *error = "more than one input file";
-      return false;
-    }
-  }
-  if (in_path->empty()) {
-    *error = "no input file";
-    return false;
-  }
-  return options->IsValid(error);
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-  }
-  std::string in_path, out_path, error;
+struct Args {
+  std::string in_path, out_path;
   fusemap::pose_graph::OptimizationOptions options;
-  // Tuned on intel, MIT, CSAIL and manhattan: the Huber pass gets MIT out of the poor basin of
-  // its initial values, where plain least squares stalls (cost 385 after 373 iterations; the
-  // optimum, reached from several starts, is 20.58).
-  options.max_num_iterations = 200;
-  options.huber_scale = 1.0;
-  if (!ParseArgs(argc, argv, &in_path, &out_path, &options, &error)) {
-    std::fprintf(stderr, "fusemap_g2o: %s\n%s", error.c_str(), kUsage);
-    return 2;
-  }
+};
 
+// Optimises the graph and prints the costs: 0, or 1 for an unreadable or unusable graph.
+int Optimise(const Args& args) {
+  std::string error;
   fusemap::io::G2oFile file;
-  if (!fusemap::io::ReadG2oFile(in_path, &file, &error)) {
+  if (!fusemap::io::ReadG2oFile(args.in_path, &file, &error)) {
     std::fprintf(stderr, "fusemap_g2o: %s\n", error.c_str());
     return 1;
   }
   fusemap::pose_graph::Se2Graph& graph = file.graph;
-  std::printf("%s: %zu vertices, %zu edges, %d fixed\n", in_path.c_str(), graph.vertices.size(),
-              graph.edges.size(), file.num_fixed);
+  std::printf("%s: %zu vertices, %zu edges, %d fixed\n", args.in_path.c_str(),
+              graph.vertices.size(), graph.edges.size(), file.num_fixed);
   for (const auto& [tag, count] : file.skipped_tags) {
     std::printf("skipped %d lines with unsupported tag %s\n", count, tag.c_str());
   }
@@ -111,23 +52,45 @@ int main(int argc, char** argv) {
   for (fusemap::pose_graph::Se2Edge& edge : graph.edges) edge.robust = true;
 
   const fusemap::pose_graph::OptimizationSummary summary =
-      fusemap::pose_graph::SolveSe2GraphRobustThenPlain(options, &graph);
+      fusemap::pose_graph::SolveSe2GraphRobustThenPlain(args.options, &graph);
   std::printf("chi2 before %.6g after %.6g; %s\n", 2.0 * summary.initial_cost,
               2.0 * summary.final_cost,
               summary.converged ? "converged" : "NOT converged (iteration limit or failure)");
   if (!std::isfinite(summary.initial_cost) || !std::isfinite(summary.final_cost)) {
-    std::fprintf(stderr, "fusemap_g2o: %s: optimisation failed: cost is not finite (initial %g, final %g)\n",
-                 in_path.c_str(), summary.initial_cost, summary.final_cost);
+    std::fprintf(stderr,
+                 "fusemap_g2o: %s: optimisation failed: cost is not finite (initial %g, final %g)\n",
+                 args.in_path.c_str(), summary.initial_cost, summary.final_cost);
     return 1;
   }
-  if (!out_path.empty()) {
-    if (!fusemap::io::WriteG2oFile(out_path, graph, &error)) {
+  if (!args.out_path.empty()) {
+    if (!fusemap::io::WriteG2oFile(args.out_path, graph, &error)) {
       std::fprintf(stderr, "fusemap_g2o: %s\n", error.c_str());
       return 1;
     }
-    std::printf("wrote %s\n", out_path.c_str());
+    std::printf("wrote %s\n", args.out_path.c_str());
   }
   std::printf("initial_cost=%.6g final_cost=%.6g iterations=%d wall_s=%.3f\n",
               summary.initial_cost, summary.final_cost, summary.iterations, summary.wall_s);
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  // Tuned on intel, MIT, CSAIL and manhattan: the Huber pass gets MIT out of the poor basin of
+  // its initial values, where plain least squares stalls (cost 385 after 373 iterations; the
+  // optimum, reached from several starts, is 20.58).
+  args.options.max_num_iterations = 200;
+  args.options.huber_scale = 1.0;
+  fusemap::common::CommandLine command_line("fusemap_g2o", kUsage);
+  command_line.AddPositional("FILE.g2o", &args.in_path);
+  command_line.AddInt("--iterations", &args.options.max_num_iterations, 1, 1000000);
+  command_line.AddDouble("--huber", &args.options.huber_scale,
+                         fusemap::common::NumberRange::NonNegative());
+  command_line.AddString("--out", &args.out_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return *exit_code;
+  std::string error;
+  if (!args.options.IsValid(&error)) return command_line.UsageError(error);
+  return Optimise(args);
 }

@@ -1,10 +1,13 @@
 // fusemap_sim: deterministic simulated sensor log (laser, odometry, IMU, RGB-D, ground truth).
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
+#include <optional>
 #include <string>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/sim/simulation.h"
 #include "fusemap/sim/world_loader.h"
 #include "sim_log.h"
@@ -28,70 +31,39 @@ constexpr char kUsage[] =
     "  --threads N       RGB-D rendering threads (default 2; output does not depend on it)\n"
     "  --help            this text\n";
 
-bool ParseNumber(const std::string& flag, const char* text, double* value) {
-  char* end = nullptr;
-  *value = std::strtod(text, &end);
-  if (end == text || *end != '\0') {
-    std::fprintf(stderr, "fusemap_sim: %s expects a number, got '%s'\n", flag.c_str(), text);
-    return false;
-  }
-  return true;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
+struct Args {
   std::string world_path, out_dir;
   fusemap::sim::SimulationOptions options;
   int threads = 2;
-  for (int i = 1; i < argc; ++i) {
-    const std::string flag = argv[i];
-    if (flag == "--help" || flag == "-h") {
-      std::fputs(kUsage, stdout);
-      return 0;
-    }
-    if (flag == "--no-rgbd") {
-      options.rgbd_enabled = false;
-      continue;
-    }
-    if (i + 1 >= argc) {
-      std::fprintf(stderr, "fusemap_sim: %s needs a value (or unknown flag)\n%s", flag.c_str(), kUsage);
-      return 2;
-    }
-    const char* value = argv[++i];
-    double number = 0.0;
-    if (flag == "--world") {
-      world_path = value;
-    } else if (flag == "--out") {
-      out_dir = value;
-    } else if (flag == "--seconds" || flag == "--seed" || flag == "--laser-rate" ||
-               flag == "--rgbd-rate" || flag == "--threads") {
-      if (!ParseNumber(flag, value, &number)) return 2;
-      if (flag == "--seconds") options.seconds = number;
-      if (flag == "--laser-rate") options.laser.rate_hz = number;
-      if (flag == "--rgbd-rate") options.rgbd.rate_hz = number;
-      if (flag == "--threads") threads = static_cast<int>(number);
-      if (flag == "--seed") {
-        if (number < 0 || number != static_cast<double>(static_cast<uint64_t>(number))) {
-          std::fprintf(stderr, "fusemap_sim: --seed must be a non-negative integer\n");
-          return 2;
-        }
-        options.seed = static_cast<uint64_t>(number);
-      }
-    } else {
-      std::fprintf(stderr, "fusemap_sim: unknown flag '%s'\n%s", flag.c_str(), kUsage);
-      return 2;
-    }
-  }
-  if (world_path.empty() || out_dir.empty()) {
-    std::fprintf(stderr, "fusemap_sim: --world and --out are required\n%s", kUsage);
-    return 2;
-  }
-  if (threads < 1 || threads > 64) {
-    std::fprintf(stderr, "fusemap_sim: --threads must be in [1, 64]\n");
-    return 2;
-  }
+};
 
+// Fills *args; nullopt to go on, else the exit code (--help 0, usage error 2).
+std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
+  int64_t seed = static_cast<int64_t>(args->options.seed);
+  fusemap::common::CommandLine command_line("fusemap_sim", kUsage);
+  command_line.AddString("--world", &args->world_path,
+                         fusemap::common::CommandLine::Required::kYes);
+  command_line.AddString("--out", &args->out_dir, fusemap::common::CommandLine::Required::kYes);
+  command_line.AddDouble("--seconds", &args->options.seconds);
+  command_line.AddInt64("--seed", &seed, 0, std::numeric_limits<int64_t>::max());
+  command_line.AddDouble("--laser-rate", &args->options.laser.rate_hz);
+  command_line.AddDouble("--rgbd-rate", &args->options.rgbd.rate_hz);
+  command_line.AddFlag("--no-rgbd", &args->options.rgbd_enabled, false);
+  command_line.AddInt("--threads", &args->threads, 1, 64);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return exit_code;
+  args->options.seed = static_cast<uint64_t>(seed);
+  // A duration or rate out of the simulation's range came from this command line: usage.
+  std::string error;
+  if (!args->options.IsValid(&error)) return command_line.UsageError(error);
+  return std::nullopt;
+}
+
+// Simulates and writes DIR's files: 0, or 1 for an unreadable world or unwritten outputs.
+int Simulate(const Args& args) {
+  const std::string& world_path = args.world_path;
+  const std::string& out_dir = args.out_dir;
+  const fusemap::sim::SimulationOptions& options = args.options;
+  const int threads = args.threads;
   std::string error;
   fusemap::sim::World world;
   if (!fusemap::sim::LoadWorldFile(world_path, &world, &error)) {
@@ -144,4 +116,12 @@ int main(int argc, char** argv) {
               simulation->trajectory().duration_s(), counts.c_str(), wall_s,
               (ec ? 0.0 : static_cast<double>(log_bytes)) / 1e6, log_options.log_path.c_str());
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Args args;
+  if (const auto exit_code = ParseArgs(argc, argv, &args)) return *exit_code;
+  return Simulate(args);
 }

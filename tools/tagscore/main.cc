@@ -1,14 +1,12 @@
 // fusemap_tagscore: AprilTag detection, tag ground truth from an LCM log, trajectory scoring.
-#include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <map>
 #include <opencv2/imgcodecs.hpp>
 #include <string>
 #include <vector>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/common/config_reader.h"
 #include "fusemap/ground_truth/tag_detector.h"
 #include "fusemap/ground_truth/tag_ground_truth.h"
@@ -46,42 +44,7 @@ int Fail(const std::string& message) {
   return 1;
 }
 
-// Command-line usage errors exit 2; bad input and failed runs exit 1 (Fail).
-int UsageError(const std::string& message) {
-  std::fprintf(stderr, "fusemap_tagscore: %s\n", message.c_str());
-  return 2;
-}
-
-// Flags `--name value`; positional arguments in order. Returns false on a dangling flag.
-bool ParseArgs(int argc, char** argv, const std::vector<std::string>& switches,
-               std::map<std::string, std::string>* flags, std::vector<std::string>* positional,
-               std::string* error) {
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg.rfind("--", 0) != 0) {
-      positional->push_back(arg);
-    } else if (std::find(switches.begin(), switches.end(), arg) != switches.end()) {
-      (*flags)[arg] = "1";
-    } else if (i + 1 < argc) {
-      (*flags)[arg] = argv[++i];
-    } else {
-      *error = "flag " + arg + " needs a value";
-      return false;
-    }
-  }
-  return true;
-}
-
-bool CheckFlags(const std::map<std::string, std::string>& flags,
-                const std::vector<std::string>& known, std::string* error) {
-  for (const auto& [name, value] : flags) {
-    if (std::find(known.begin(), known.end(), name) == known.end()) {
-      *error = "unknown flag " + name;
-      return false;
-    }
-  }
-  return true;
-}
+using common::CommandLine;
 
 // Reads CONFIG's ground_truth and score sections (either may be absent).
 bool LoadConfig(const std::string& path, ground_truth::TagGroundTruthOptions* gt_options,
@@ -94,16 +57,16 @@ bool LoadConfig(const std::string& path, ground_truth::TagGroundTruthOptions* gt
   return reader->Finish(error);
 }
 
-int Detect(const std::map<std::string, std::string>& flags,
-           const std::vector<std::string>& images) {
-  if (images.empty()) return UsageError("detect: no image given\n" + std::string(kUsage));
+struct DetectArgs {
+  std::vector<std::string> images;
   ground_truth::TagDetectorOptions options;
-  if (flags.count("--family")) options.family = flags.at("--family");
-  if (flags.count("--refine-edges")) options.refine_edges = true;
+};
+
+int Detect(const DetectArgs& args) {
   std::string error;
-  auto detector = ground_truth::TagDetector::Create(options, &error);
+  auto detector = ground_truth::TagDetector::Create(args.options, &error);
   if (detector == nullptr) return Fail("detect: " + error);
-  for (const std::string& path : images) {
+  for (const std::string& path : args.images) {
     if (!std::filesystem::exists(path)) return Fail(path + ": no such file");
     cv::Mat mat;
     if (!io::ReadImageFile(path, cv::IMREAD_GRAYSCALE, io::kMaxImageSide, &mat, &error)) {
@@ -122,23 +85,25 @@ int Detect(const std::map<std::string, std::string>& flags,
   return 0;
 }
 
-int GroundTruth(const std::map<std::string, std::string>& flags) {
-  for (const char* required : {"--log", "--tags", "--out"}) {
-    if (!flags.count(required)) return UsageError(std::string("groundtruth: missing ") + required);
-  }
-  const std::string log_path = flags.at("--log");
-  const std::string channel = flags.count("--channel") ? flags.at("--channel") : "RGBD";
-  const std::string out_path = flags.at("--out");
+struct GroundTruthArgs {
+  std::string log_path, tags_path, out_path, config_path, sightings_path;
+  std::string channel = "RGBD";
+};
+
+int GroundTruth(const GroundTruthArgs& args) {
+  const std::string& log_path = args.log_path;
+  const std::string& channel = args.channel;
+  const std::string& out_path = args.out_path;
   const std::string sightings_path =
-      flags.count("--sightings") ? flags.at("--sightings") : out_path + ".sightings";
+      args.sightings_path.empty() ? out_path + ".sightings" : args.sightings_path;
   ground_truth::TagGroundTruthOptions options;
   ground_truth::ScoreOptions unused;
   std::string error;
-  if (flags.count("--config") && !LoadConfig(flags.at("--config"), &options, &unused, &error)) {
+  if (!LoadConfig(args.config_path, &options, &unused, &error)) {
     return Fail(error);
   }
   ground_truth::TagMap tag_map;
-  if (!io::ReadTagMapFile(flags.at("--tags"), options.default_tag_size_m, &tag_map, &error)) {
+  if (!io::ReadTagMapFile(args.tags_path, options.default_tag_size_m, &tag_map, &error)) {
     return Fail(error);
   }
   auto detector = ground_truth::TagDetector::Create(options.detector, &error);
@@ -183,11 +148,11 @@ int GroundTruth(const std::map<std::string, std::string>& flags) {
       count(ground_truth::FrameOutcome::kOnlyUnknownTags),
       count(ground_truth::FrameOutcome::kRejected), undecodable);
   for (const auto& [id, n] : builder.unknown_tag_counts()) {
-    std::printf("unknown tag id %d (not in %s): %d detections\n", id, flags.at("--tags").c_str(),
+    std::printf("unknown tag id %d (not in %s): %d detections\n", id, args.tags_path.c_str(),
                 n);
   }
   if (builder.trajectory().empty()) {
-    return Fail(log_path + ": no frame showed a tag of " + flags.at("--tags"));
+    return Fail(log_path + ": no frame showed a tag of " + args.tags_path);
   }
   if (!io::WriteTumTrajectoryFile(out_path, builder.trajectory(), &error) ||
       !io::WriteTagSightingsFile(sightings_path, builder.sightings(), &error)) {
@@ -198,44 +163,45 @@ int GroundTruth(const std::map<std::string, std::string>& flags) {
   return 0;
 }
 
-int Score(const std::map<std::string, std::string>& flags) {
-  for (const char* required : {"--gt", "--est", "--report"}) {
-    if (!flags.count(required)) return UsageError(std::string("score: missing ") + required);
-  }
+struct ScoreArgs {
+  std::string gt_path, est_path, report_dir, config_path, sightings_path, measures_path;
+};
+
+int Score(const ScoreArgs& args) {
   ground_truth::TagGroundTruthOptions unused;
   ground_truth::ScoreOptions options;
   std::string error;
-  if (flags.count("--config") && !LoadConfig(flags.at("--config"), &unused, &options, &error)) {
+  if (!LoadConfig(args.config_path, &unused, &options, &error)) {
     return Fail(error);
   }
   eval::Trajectory gt, est;
-  if (!io::ReadTumTrajectoryFile(flags.at("--gt"), &gt, &error) ||
-      !io::ReadTumTrajectoryFile(flags.at("--est"), &est, &error)) {
+  if (!io::ReadTumTrajectoryFile(args.gt_path, &gt, &error) ||
+      !io::ReadTumTrajectoryFile(args.est_path, &est, &error)) {
     return Fail(error);
   }
-  if (gt.empty()) return Fail(flags.at("--gt") + ": no poses");
-  if (est.empty()) return Fail(flags.at("--est") + ": no poses");
+  if (gt.empty()) return Fail(args.gt_path + ": no poses");
+  if (est.empty()) return Fail(args.est_path + ": no poses");
   std::vector<ground_truth::TagSighting> sightings;
-  std::string sightings_path = flags.count("--sightings") ? flags.at("--sightings") : "";
-  if (sightings_path.empty() && std::filesystem::exists(flags.at("--gt") + ".sightings")) {
-    sightings_path = flags.at("--gt") + ".sightings";
+  std::string sightings_path = args.sightings_path;
+  if (sightings_path.empty() && std::filesystem::exists(args.gt_path + ".sightings")) {
+    sightings_path = args.gt_path + ".sightings";
   }
   if (!sightings_path.empty() && !io::ReadTagSightingsFile(sightings_path, &sightings, &error)) {
     return Fail(error);
   }
   std::vector<ground_truth::MapMeasure> measures;
-  if (flags.count("--measures") &&
-      !io::ReadMeasuresFile(flags.at("--measures"), &measures, &error)) {
+  if (!args.measures_path.empty() &&
+      !io::ReadMeasuresFile(args.measures_path, &measures, &error)) {
     return Fail(error);
   }
   ground_truth::TrajectoryScore score;
   if (!ground_truth::ScoreTrajectory(gt, est, sightings, measures, options, &score, &error)) {
-    return Fail(flags.at("--gt") + " vs " + flags.at("--est") + ": " + error);
+    return Fail(args.gt_path + " vs " + args.est_path + ": " + error);
   }
   io::ReportInfo info;
-  info.gt_path = flags.at("--gt");
-  info.est_path = flags.at("--est");
-  if (!io::WriteScoreReport(flags.at("--report"), score, info, &error)) return Fail(error);
+  info.gt_path = args.gt_path;
+  info.est_path = args.est_path;
+  if (!io::WriteScoreReport(args.report_dir, score, info, &error)) return Fail(error);
   for (const auto& f : io::ReportFigures(score)) {
     // Not finite: the figure does not apply (a run that never returns to its start has no
     // loop-closure error), as the HTML report says.
@@ -245,41 +211,55 @@ int Score(const std::map<std::string, std::string>& flags) {
       std::printf("%-40s %12s\n", f.label.c_str(), "n/a");
     }
   }
-  std::printf("report: %s/index.html\n", flags.at("--report").c_str());
+  std::printf("report: %s/index.html\n", args.report_dir.c_str());
   return 0;
 }
 
-int Main(int argc, char** argv) {
-  if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h")) {
-    std::fputs(kUsage, argc < 2 ? stderr : stdout);
-    return argc < 2 ? 2 : 0;
-  }
-  const std::string command = argv[1];
-  std::map<std::string, std::string> flags;
-  std::vector<std::string> positional;
+int RunDetect(int argc, char** argv) {
+  DetectArgs args;
+  CommandLine command_line("fusemap_tagscore detect", kUsage);
+  command_line.AddPositionalList("IMAGE", &args.images, 1);
+  command_line.AddString("--family", &args.options.family);
+  command_line.AddFlag("--refine-edges", &args.options.refine_edges);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
   std::string error;
-  if (!ParseArgs(argc, argv, {"--help", "--refine-edges"}, &flags, &positional, &error)) {
-    return UsageError(error);
-  }
-  if (flags.count("--help")) {
-    std::fputs(kUsage, stdout);
-    return 0;
-  }
-  const std::map<std::string, std::vector<std::string>> known = {
-      {"detect", {"--family", "--refine-edges"}},
-      {"groundtruth", {"--log", "--tags", "--out", "--config", "--channel", "--sightings"}},
-      {"score", {"--gt", "--est", "--report", "--config", "--sightings", "--measures"}}};
-  if (!known.count(command)) return UsageError("unknown command '" + command + "'\n" + kUsage);
-  if (!CheckFlags(flags, known.at(command), &error)) return UsageError(command + ": " + error);
-  if (command != "detect" && !positional.empty()) {
-    return UsageError(command + ": unexpected argument '" + positional[0] + "'");
-  }
-  if (command == "detect") return Detect(flags, positional);
-  if (command == "groundtruth") return GroundTruth(flags);
-  return Score(flags);
+  if (!args.options.IsValid(&error)) return command_line.UsageError(error);  // --family
+  return Detect(args);
+}
+
+int RunGroundTruth(int argc, char** argv) {
+  GroundTruthArgs args;
+  CommandLine command_line("fusemap_tagscore groundtruth", kUsage);
+  command_line.AddString("--log", &args.log_path, CommandLine::Required::kYes);
+  command_line.AddString("--tags", &args.tags_path, CommandLine::Required::kYes);
+  command_line.AddString("--out", &args.out_path, CommandLine::Required::kYes);
+  command_line.AddString("--config", &args.config_path);
+  command_line.AddString("--channel", &args.channel);
+  command_line.AddString("--sightings", &args.sightings_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  return GroundTruth(args);
+}
+
+int RunScore(int argc, char** argv) {
+  ScoreArgs args;
+  CommandLine command_line("fusemap_tagscore score", kUsage);
+  command_line.AddString("--gt", &args.gt_path, CommandLine::Required::kYes);
+  command_line.AddString("--est", &args.est_path, CommandLine::Required::kYes);
+  command_line.AddString("--report", &args.report_dir, CommandLine::Required::kYes);
+  command_line.AddString("--config", &args.config_path);
+  command_line.AddString("--sightings", &args.sightings_path);
+  command_line.AddString("--measures", &args.measures_path);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  return Score(args);
 }
 
 }  // namespace
 }  // namespace fusemap
 
-int main(int argc, char** argv) { return fusemap::Main(argc, argv); }
+int main(int argc, char** argv) {
+  return fusemap::common::RunSubcommand("fusemap_tagscore", fusemap::kUsage,
+                                        {{"detect", fusemap::RunDetect},
+                                         {"groundtruth", fusemap::RunGroundTruth},
+                                         {"score", fusemap::RunScore}},
+                                        argc, argv);
+}

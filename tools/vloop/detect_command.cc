@@ -3,6 +3,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/visual_loop/image_sequence.h"
 #include "fusemap/visual_loop/keyframe.h"
 #include "fusemap/visual_loop/loop_detector.h"
@@ -24,59 +25,40 @@ constexpr char kHelp[] =
     "  --consistency N     earlier consecutive queries that must agree (default 1)\n"
     "  --verbose           also print every candidate island\n";
 
-}  // namespace
-
-int DetectCommand(int argc, char** argv) {
-  Arguments args;
-  std::string error;
-  if (!ParseArguments(argc, argv, 2, {"--intrinsics", "--vocabulary", "--exclude-recent", "--consistency"},
-                      {"--verbose"}, &args, &error)) {
-    std::fprintf(stderr, "error: %s\n%s", error.c_str(), kHelp);
-    return kExitUsage;
-  }
-  if (args.help) {
-    std::fputs(kHelp, stdout);
-    return kExitOk;
-  }
-  if (args.positional.size() != 1) {
-    std::fprintf(stderr, "error: need exactly one directory\n%s", kHelp);
-    return kExitUsage;
-  }
-  visual_loop::LoopDetectorOptions options = visual_loop::ImageSequenceDetectorOptions();
+struct DetectArgs {
+  std::string directory, vocabulary;
   sensor::PinholeIntrinsics intrinsics;
-  if (const auto text = args.Get("--intrinsics"); text && !ParseIntrinsics(*text, &intrinsics)) {
-    std::fprintf(stderr, "error: --intrinsics wants fx,fy,cx,cy (fx, fy > 0), got '%s'\n", text->c_str());
-    return kExitUsage;
-  }
-  const std::pair<const char*, int*> ints[] = {
-      {"--exclude-recent", &options.recognition.num_recent_excluded},
-      {"--consistency", &options.recognition.temporal_consistency}};
-  for (const auto& [name, target] : ints) {
-    if (const auto value = args.Get(name); value && (!ParseInt(*value, target) || *target < 0)) {
-      std::fprintf(stderr, "error: %s wants a non-negative integer, got '%s'\n", name, value->c_str());
-      return kExitUsage;
-    }
-  }
-  const bool verbose = args.Get("--verbose").has_value();
-  const std::string& directory = args.positional[0];
+  visual_loop::LoopDetectorOptions options = visual_loop::ImageSequenceDetectorOptions();
+  bool verbose = false;
+};
+
+// Runs the loop detector over the directory's images and prints the loops: 0, or 1 for bad
+// input.
+int Detect(const DetectArgs& args) {
+  const visual_loop::LoopDetectorOptions& options = args.options;
+  const sensor::PinholeIntrinsics& intrinsics = args.intrinsics;
+  const bool verbose = args.verbose;
+  std::string error;
+  const std::string& directory = args.directory;
   if (!std::filesystem::is_directory(directory)) {
     std::fprintf(stderr, "error: %s: not a directory\n", directory.c_str());
-    return kExitBadInput;
+    return common::kExitFailure;
   }
   const std::vector<std::string> images = visual_loop::ListImages(directory, &error);
   if (!error.empty()) {
     std::fprintf(stderr, "error: %s\n", error.c_str());
-    return kExitBadInput;
+    return common::kExitFailure;
   }
-  const std::optional<visual_loop::Vocabulary> vocabulary = LoadVocabularyOrReport(VocabularyPath(args));
-  if (!vocabulary) return kExitBadInput;
+  const std::optional<visual_loop::Vocabulary> vocabulary =
+      LoadVocabularyOrReport(VocabularyPath(args.vocabulary));
+  if (!vocabulary) return common::kExitFailure;
 
   const visual_loop::OrbExtractor extractor{visual_loop::OrbOptions{}};
   visual_loop::LoopDetector detector(options, vocabulary->num_words());
   int loops = 0;
   for (size_t i = 0; i < images.size(); ++i) {
     const cv::Mat image = ReadImage(images[i], cv::IMREAD_GRAYSCALE);
-    if (image.empty()) return kExitBadInput;
+    if (image.empty()) return common::kExitFailure;
     visual_loop::Keyframe keyframe = visual_loop::MakeKeyframe(
         image, cv::Mat(), intrinsics, extractor, &*vocabulary, visual_loop::KeyframeOptions{});
     keyframe.id = static_cast<int>(i);
@@ -97,7 +79,28 @@ int DetectCommand(int argc, char** argv) {
     }
   }
   std::printf("frames=%zu loops=%d\n", images.size(), loops);
-  return kExitOk;
+  return common::kExitSuccess;
+}
+
+}  // namespace
+
+int DetectCommand(int argc, char** argv) {
+  DetectArgs args;
+  std::vector<double> intrinsics;
+  common::CommandLine command_line("fusemap_vloop detect", kHelp);
+  command_line.AddPositional("DIR", &args.directory);
+  command_line.AddDoubleList("--intrinsics", &intrinsics, {}, 4);
+  command_line.AddString("--vocabulary", &args.vocabulary);
+  command_line.AddInt("--exclude-recent", &args.options.recognition.num_recent_excluded, 0,
+                      1000000000);
+  command_line.AddInt("--consistency", &args.options.recognition.temporal_consistency, 0,
+                      1000000000);
+  command_line.AddFlag("--verbose", &args.verbose);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  if (command_line.Given("--intrinsics") && !IntrinsicsFromList(intrinsics, &args.intrinsics)) {
+    return command_line.UsageError("--intrinsics wants fx,fy,cx,cy with fx, fy > 0");
+  }
+  return Detect(args);
 }
 
 }  // namespace vloop

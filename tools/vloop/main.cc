@@ -1,8 +1,6 @@
 // fusemap_vloop: the ORB visual loop checker over image files (train a vocabulary, verify a
 // pair, detect revisits in a sequence).
-#include <cstdio>
-#include <cstring>
-
+#include "fusemap/common/command_line.h"
 #include "vloop_common.h"
 
 namespace {
@@ -26,14 +24,9 @@ constexpr char kUsage[] =
 
 int main(int argc, char** argv) {
   using namespace fusemap::vloop;
-  if (argc < 2 || std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0) {
-    std::fputs(kUsage, argc < 2 ? stderr : stdout);
-    return argc < 2 ? kExitUsage : kExitOk;
-  }
-  const std::string command = argv[1];
-  if (command == "train-vocabulary") return TrainVocabularyCommand(argc, argv);
-  if (command == "match") return MatchCommand(argc, argv);
-  if (command == "detect") return DetectCommand(argc, argv);
-  std::fprintf(stderr, "error: unknown command '%s'\n%s", command.c_str(), kUsage);
-  return kExitUsage;
+  return fusemap::common::RunSubcommand("fusemap_vloop", kUsage,
+                                        {{"train-vocabulary", TrainVocabularyCommand},
+                                         {"match", MatchCommand},
+                                         {"detect", DetectCommand}},
+                                        argc, argv);
 }

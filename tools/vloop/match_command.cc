@@ -3,6 +3,7 @@
 
 #include <opencv2/imgcodecs.hpp>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/visual_loop/geometric_verifier.h"
 #include "fusemap/visual_loop/keyframe.h"
 #include "fusemap/visual_loop/planar_constraint.h"
@@ -22,69 +23,47 @@ constexpr char kHelp[] =
     "inliers and T_a_b, the pose of camera B in camera A (x right, y down, z forward), with its\n"
     "1-sigma from the covariance (PnP). Exit code 0 when verified, 1 when not or on bad input.\n";
 
-bool LoadDepth(const std::optional<std::string>& path, double scale, const cv::Size& size,
-               cv::Mat* depth_m) {
-  if (!path) return true;
-  const cv::Mat raw = ReadImage(*path, cv::IMREAD_ANYDEPTH);
+// No path: no depth.
+bool LoadDepth(const std::string& path, double scale, const cv::Size& size, cv::Mat* depth_m) {
+  if (path.empty()) return true;
+  const cv::Mat raw = ReadImage(path, cv::IMREAD_ANYDEPTH);
   if (raw.empty()) return false;
   if (raw.type() != CV_16UC1 || raw.size() != size) {
-    std::fprintf(stderr, "error: %s: depth must be 16-bit and the colour image's size\n", path->c_str());
+    std::fprintf(stderr, "error: %s: depth must be 16-bit and the colour image's size\n",
+                 path.c_str());
     return false;
   }
   *depth_m = visual_loop::DepthToMeters(raw, scale);
   return true;
 }
 
-}  // namespace
-
-int MatchCommand(int argc, char** argv) {
-  Arguments args;
-  std::string error;
-  if (!ParseArguments(argc, argv, 2,
-                      {"--depth-a", "--depth-b", "--depth-scale", "--intrinsics", "--vocabulary"}, {},
-                      &args, &error)) {
-    std::fprintf(stderr, "error: %s\n%s", error.c_str(), kHelp);
-    return kExitUsage;
-  }
-  if (args.help) {
-    std::fputs(kHelp, stdout);
-    return kExitOk;
-  }
-  if (args.positional.size() != 2) {
-    std::fprintf(stderr, "error: need exactly two images A and B\n%s", kHelp);
-    return kExitUsage;
-  }
-  sensor::PinholeIntrinsics intrinsics;
-  if (const auto text = args.Get("--intrinsics"); text && !ParseIntrinsics(*text, &intrinsics)) {
-    std::fprintf(stderr, "error: --intrinsics wants fx,fy,cx,cy (fx, fy > 0), got '%s'\n", text->c_str());
-    return kExitUsage;
-  }
+struct MatchArgs {
+  std::string image_a, image_b, depth_a, depth_b, vocabulary;
   double depth_scale = 1000.0;
-  if (const auto text = args.Get("--depth-scale"); text && (!ParseDouble(*text, &depth_scale) || !(depth_scale > 0.0))) {
-    std::fprintf(stderr, "error: --depth-scale wants a positive number, got '%s'\n", text->c_str());
-    return kExitUsage;
-  }
-  const bool with_depth = args.Get("--depth-a").has_value() || args.Get("--depth-b").has_value();
-  if (with_depth && intrinsics.fx <= 0.0) {
-    std::fprintf(stderr, "error: depth needs --intrinsics to back-project\n");
-    return kExitUsage;
-  }
+  sensor::PinholeIntrinsics intrinsics;
+};
+
+// Matches and verifies the pair and prints the result: 0 when verified, else 1.
+int Match(MatchArgs args) {
+  sensor::PinholeIntrinsics& intrinsics = args.intrinsics;
+  const double depth_scale = args.depth_scale;
+  std::string error;
   std::optional<visual_loop::Vocabulary> vocabulary;
-  if (args.Get("--vocabulary")) {
-    vocabulary = LoadVocabularyOrReport(VocabularyPath(args));
-    if (!vocabulary) return kExitBadInput;
+  if (!args.vocabulary.empty()) {
+    vocabulary = LoadVocabularyOrReport(args.vocabulary);
+    if (!vocabulary) return common::kExitFailure;
   } else {
-    vocabulary = visual_loop::Vocabulary::Load(VocabularyPath(args), &error);  // optional here
+    vocabulary = visual_loop::Vocabulary::Load(VocabularyPath(""), &error);  // optional here
   }
 
-  const cv::Mat image_a = ReadImage(args.positional[0], cv::IMREAD_COLOR);
-  const cv::Mat image_b = ReadImage(args.positional[1], cv::IMREAD_COLOR);
-  if (image_a.empty() || image_b.empty()) return kExitBadInput;
+  const cv::Mat image_a = ReadImage(args.image_a, cv::IMREAD_COLOR);
+  const cv::Mat image_b = ReadImage(args.image_b, cv::IMREAD_COLOR);
+  if (image_a.empty() || image_b.empty()) return common::kExitFailure;
   cv::Mat depth_a;
   cv::Mat depth_b;
-  if (!LoadDepth(args.Get("--depth-a"), depth_scale, image_a.size(), &depth_a) ||
-      !LoadDepth(args.Get("--depth-b"), depth_scale, image_b.size(), &depth_b)) {
-    return kExitBadInput;
+  if (!LoadDepth(args.depth_a, depth_scale, image_a.size(), &depth_a) ||
+      !LoadDepth(args.depth_b, depth_scale, image_b.size(), &depth_b)) {
+    return common::kExitFailure;
   }
   intrinsics.width = image_a.cols;
   intrinsics.height = image_a.rows;
@@ -122,10 +101,33 @@ int MatchCommand(int argc, char** argv) {
   }
   if (!result.verified) {
     std::printf("verified=no reason=%s\n", result.reason.c_str());
-    return kExitBadInput;
+    return common::kExitFailure;
   }
   std::printf("verified=yes\n");
-  return kExitOk;
+  return common::kExitSuccess;
+}
+
+}  // namespace
+
+int MatchCommand(int argc, char** argv) {
+  MatchArgs args;
+  std::vector<double> intrinsics;
+  common::CommandLine command_line("fusemap_vloop match", kHelp);
+  command_line.AddPositional("A", &args.image_a);
+  command_line.AddPositional("B", &args.image_b);
+  command_line.AddString("--depth-a", &args.depth_a);
+  command_line.AddString("--depth-b", &args.depth_b);
+  command_line.AddDouble("--depth-scale", &args.depth_scale, common::NumberRange::Positive());
+  command_line.AddDoubleList("--intrinsics", &intrinsics, {}, 4);
+  command_line.AddString("--vocabulary", &args.vocabulary);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  if (command_line.Given("--intrinsics") && !IntrinsicsFromList(intrinsics, &args.intrinsics)) {
+    return command_line.UsageError("--intrinsics wants fx,fy,cx,cy with fx, fy > 0");
+  }
+  if ((!args.depth_a.empty() || !args.depth_b.empty()) && args.intrinsics.fx <= 0.0) {
+    return command_line.UsageError("depth needs --intrinsics to back-project");
+  }
+  return Match(args);
 }
 
 }  // namespace vloop

@@ -13,31 +13,12 @@
 namespace fusemap {
 namespace vloop {
 
-constexpr int kExitOk = 0;
-constexpr int kExitBadInput = 1;
-constexpr int kExitUsage = 2;
+// fx,fy,cx,cy as --intrinsics gives them; false unless there are four and fx, fy > 0.
+bool IntrinsicsFromList(const std::vector<double>& fx_fy_cx_cy, sensor::PinholeIntrinsics* out);
 
-// Options of a subcommand: positional arguments and "--name value" pairs (flags have no value).
-struct Arguments {
-  std::vector<std::string> positional;
-  std::vector<std::pair<std::string, std::string>> options;
-  bool help = false;
-  // The value of --name, if given.
-  std::optional<std::string> Get(const std::string& name) const;
-};
-
-// Parses argv[first..]; options taking a value are listed in `with_value`, the flags in `flags`.
-// Returns false with a message on an unknown option or a missing value.
-bool ParseArguments(int argc, char** argv, int first, const std::vector<std::string>& with_value,
-                    const std::vector<std::string>& flags, Arguments* out, std::string* error);
-
-bool ParseIntrinsics(const std::string& text, sensor::PinholeIntrinsics* out);
-bool ParseInt(const std::string& text, int* out);
-bool ParseDouble(const std::string& text, double* out);
-
-// --vocabulary if given, else the committed one (next to the build tree, or the source tree
-// this binary was built from).
-std::string VocabularyPath(const Arguments& arguments);
+// `given` (--vocabulary) unless empty, else the committed one (next to the build tree, or the
+// source tree this binary was built from).
+std::string VocabularyPath(const std::string& given);
 std::optional<visual_loop::Vocabulary> LoadVocabularyOrReport(const std::string& path);
 
 // The image, or an empty Mat after printing "path: cannot read image".
