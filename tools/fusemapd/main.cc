@@ -6,13 +6,13 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <ctime>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <thread>
 
+#include "fusemap/common/command_line.h"
 #include "fusemap/daemon/cloud_region_publisher.h"
 #include "fusemap/daemon/daemon_options.h"
 #include "fusemap/daemon/engine.h"
@@ -24,10 +24,10 @@
 namespace fusemap {
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitRuntime = 1;
-constexpr int kExitUsage = 2;
-constexpr int kExitCheckpoint = 3;
+constexpr int kExitOk = common::kExitSuccess;
+constexpr int kExitRuntime = common::kExitFailure;
+constexpr int kExitUsage = common::kExitUsage;
+constexpr int kExitCheckpoint = 3;  // a checkpoint that cannot be restored (fusemapd only)
 
 constexpr char kUsage[] =
     "usage: fusemapd --config FILE --lcm-url URL --out DIR [--resume] [--threads N] [--quiet]\n"
@@ -81,48 +81,6 @@ struct Args {
   int threads = 1;
   bool quiet = false;
 };
-
-bool ParseArgs(int argc, char** argv, Args* args, std::string* error) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&](std::string* out) {
-      if (i + 1 >= argc) {
-        *error = a + " needs a value";
-        return false;
-      }
-      *out = argv[++i];
-      return true;
-    };
-    if (a == "--config") {
-      if (!value(&args->config)) return false;
-    } else if (a == "--lcm-url") {
-      if (!value(&args->lcm_url)) return false;
-    } else if (a == "--out") {
-      if (!value(&args->out)) return false;
-    } else if (a == "--resume") {
-      args->resume = true;
-    } else if (a == "--quiet") {
-      args->quiet = true;
-    } else if (a == "--threads") {
-      std::string v;
-      if (!value(&v)) return false;
-      char* end = nullptr;
-      args->threads = static_cast<int>(std::strtol(v.c_str(), &end, 10));
-      if (v.empty() || *end != '\0' || args->threads < 1 || args->threads > 64) {
-        *error = "--threads takes a whole number from 1 to 64";
-        return false;
-      }
-    } else {
-      *error = "unknown argument '" + a + "'";
-      return false;
-    }
-  }
-  if (args->config.empty() || args->lcm_url.empty() || args->out.empty()) {
-    *error = "--config, --lcm-url and --out are required";
-    return false;
-  }
-  return true;
-}
 
 int Run(const Args& args) {
   io::SlamConfig slam;
@@ -257,17 +215,15 @@ int Run(const Args& args) {
 }  // namespace fusemap
 
 int main(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--help") == 0 || std::strcmp(argv[i], "-h") == 0) {
-      std::fputs(fusemap::kUsage, stdout);
-      return 0;
-    }
-  }
   fusemap::Args args;
-  std::string error;
-  if (!fusemap::ParseArgs(argc, argv, &args, &error)) {
-    std::fprintf(stderr, "fusemapd: %s\n\n%s", error.c_str(), fusemap::kUsage);
-    return fusemap::kExitUsage;
-  }
+  fusemap::common::CommandLine command_line("fusemapd", fusemap::kUsage);
+  using Required = fusemap::common::CommandLine::Required;
+  command_line.AddString("--config", &args.config, Required::kYes);
+  command_line.AddString("--lcm-url", &args.lcm_url, Required::kYes);
+  command_line.AddString("--out", &args.out, Required::kYes);
+  command_line.AddFlag("--resume", &args.resume);
+  command_line.AddInt("--threads", &args.threads, 1, 64);
+  command_line.AddFlag("--quiet", &args.quiet);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return *exit_code;
   return fusemap::Run(args);
 }
