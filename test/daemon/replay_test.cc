@@ -1,5 +1,6 @@
 // file:// replay through the whole daemon engine (LCM file provider, intake, queues, SLAM
-// thread, publisher) against MapBuilder2D fed directly in log order as fusemap_offline does:
+// thread, publisher) against a session::SlamSession fed directly in log order as
+// fusemap_offline does:
 // with one thread the trajectories must be identical, bit for bit.
 #include <gtest/gtest.h>
 
@@ -13,7 +14,7 @@
 #include "fusemap/common/math.h"
 #include "fusemap/daemon/engine.h"
 #include "fusemap/daemon/lcm_input.h"
-#include "fusemap/session/run_outputs.h"
+#include "fusemap/session/slam_session.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
 #include "testing/room_drive_log.h"
@@ -47,12 +48,11 @@ std::string WriteLog(const std::string& path) {
   return path;
 }
 
-// The offline runner's loop (tools/offline/main.cc), over the same log.
+// The session fed in log order on this thread, as fusemap_offline feeds it, over the same log.
 std::vector<pose_graph::MapBuilder2D::TimedPose2d> OfflineTrajectory(const std::string& log,
                                                                      const io::SlamConfig& config) {
   common::InlineExecutor executor;
-  pose_graph::MapBuilder2D builder(config.map_builder, &executor);
-  std::vector<sensor::OdometryData> odometry;
+  session::SlamSession session(config, &executor);
   io::LcmLogReader reader;
   std::string error;
   EXPECT_TRUE(reader.Open(log, &error)) << error;
@@ -62,18 +62,15 @@ std::vector<pose_graph::MapBuilder2D::TimedPose2d> OfflineTrajectory(const std::
     if (event.channel == config.channels.lidar) {
       sensor::LaserScan scan;
       if (io::DecodeLaserScan(event.data.data(), size, config.lidar, &scan, &error)) {
-        builder.AddScan(scan);
+        session.AddScan(scan);
       }
     } else if (event.channel == config.channels.odometry) {
       sensor::OdometryData data;
-      if (!io::DecodeOdometry(event.data.data(), size, &data, &error)) continue;
-      if (!odometry.empty() && data.stamp_s < odometry.back().stamp_s) continue;
-      odometry.push_back(data);
-      builder.AddOdometry(data);
+      if (io::DecodeOdometry(event.data.data(), size, &data, &error)) session.AddOdometry(data);
     }
   }
-  builder.Finish();
-  return pose_graph::DensifyWithOdometry(builder.NodePoses(), odometry);
+  session.Finish();
+  return pose_graph::DensifyWithOdometry(session.builder().NodePoses(), session.odometry());
 }
 
 class RecordingPublisher : public Publisher {

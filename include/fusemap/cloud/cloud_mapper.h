@@ -68,7 +68,8 @@ struct SubmapPose2d {
 // the bracketing poses (never the nearest one), bound to the submap that was active then, and
 // stays in that submap's frame. Clouds are bound with local-frame poses, which global SLAM
 // never changes; global SLAM only moves submaps, reported through PlaceSubmaps.
-// Not thread-safe: one owner (the offline runner, or the daemon's cloud thread).
+// Not thread-safe: one owner (session::CloudStage, on its caller's thread or fusemapd's RGB-D
+// thread).
 class CloudMapper {
  public:
   explicit CloudMapper(const CloudMapperOptions& options);

@@ -27,8 +27,8 @@ struct MapBuilderOptions2D {
 // Keys: local_slam, global_slam.
 MapBuilderOptions2D ParseMapBuilderOptions2D(common::ConfigReader& reader);
 
-// One robot's 2D SLAM: local SLAM feeding nodes and submaps into global SLAM. The single entry
-// point shared by the offline runner and the daemon, so both follow the same code path.
+// One robot's 2D SLAM: local SLAM feeding nodes and submaps into global SLAM. Driven through
+// session::SlamSession by both fusemap_offline and fusemapd.
 class MapBuilder2D {
  public:
   struct TimedPose2d {
