@@ -28,10 +28,11 @@ io::SlamConfig CloudConfig() {
   return config;
 }
 
-// The room drive decoded, with a wall frame every fifth scan, fed to `session` in log order.
-// `between_scans` runs after every scan (a stand-in for another thread draining a queue).
-template <typename F>
-void Drive(SlamSession* session, F&& between_scans) {
+// The room drive decoded and fed to `session` in log order, with a wall frame before every
+// fifth scan handed to `add_frame`; `after_scan` runs after every scan (a stand-in for another
+// thread draining a queue).
+template <typename AddFrame, typename AfterScan>
+void Drive(SlamSession* session, AddFrame&& add_frame, AfterScan&& after_scan) {
   const io::SlamConfig& config = session->config();
   int scans = 0;
   std::string error;
@@ -40,9 +41,9 @@ void Drive(SlamSession* session, F&& between_scans) {
     if (message.channel == "LIDAR") {
       sensor::LaserScan scan;
       ASSERT_TRUE(io::DecodeLaserScan(message.data.data(), size, config.lidar, &scan, &error));
-      if (scans++ % 5 == 0) session->AddRgbdFrame(test_world::WallFrame(scan.stamp_s - 0.05));
+      if (scans++ % 5 == 0) add_frame(test_world::WallFrame(scan.stamp_s - 0.05));
       session->AddScan(scan);
-      between_scans();
+      after_scan();
     } else {
       sensor::OdometryData odometry;
       ASSERT_TRUE(io::DecodeOdometry(message.data.data(), size, &odometry, &error));
@@ -52,44 +53,34 @@ void Drive(SlamSession* session, F&& between_scans) {
   session->Finish();
 }
 
+// As fusemap_offline: the cloud stage inline.
+void DriveInline(SlamSession* session) {
+  Drive(
+      session, [session](const sensor::RgbdFrame& frame) { session->AddRgbdFrame(frame); }, [] {});
+}
+
 // fusemapd hands the cloud updates to another thread through a queue (SetCloudSink);
 // fusemap_offline applies them inline. Same updates in the same order: the same cloud.
 TEST(SlamSessionTest, CloudThroughASinkEqualsCloudInline) {
   common::InlineExecutor executor;
   SlamSession inline_session(CloudConfig(), &executor);
-  Drive(&inline_session, [] {});
+  DriveInline(&inline_session);
 
   SlamSession queued_session(CloudConfig(), &executor);
   std::deque<CloudPoseUpdate> queue;
   queued_session.SetCloudSink([&queue](CloudPoseUpdate&& u) { queue.push_back(std::move(u)); });
   CloudStage* stage = queued_session.cloud_stage();
   ASSERT_NE(stage, nullptr);
-  // As fusemapd's RGB-D thread: poses first, then frames; the frame of a scan arrives with it.
+  // As fusemapd's RGB-D thread: it alone touches the stage, taking poses as they are queued.
   const auto drain = [&] {
     while (!queue.empty()) {
       stage->Apply(queue.front());
       queue.pop_front();
     }
   };
-  int scans = 0;
-  const io::SlamConfig& config = queued_session.config();
-  std::string error;
-  for (const auto& message : test_world::RoomDriveMessages(0.15, kStartS, 7)) {
-    const int size = static_cast<int>(message.data.size());
-    if (message.channel == "LIDAR") {
-      sensor::LaserScan scan;
-      ASSERT_TRUE(io::DecodeLaserScan(message.data.data(), size, config.lidar, &scan, &error));
-      if (scans++ % 5 == 0) stage->AddFrame(test_world::WallFrame(scan.stamp_s - 0.05));
-      queued_session.AddScan(scan);
-      drain();
-    } else {
-      sensor::OdometryData odometry;
-      ASSERT_TRUE(io::DecodeOdometry(message.data.data(), size, &odometry, &error));
-      queued_session.AddOdometry(odometry);
-    }
-  }
-  queued_session.Finish();
-  drain();
+  Drive(
+      &queued_session, [stage](const sensor::RgbdFrame& frame) { stage->AddFrame(frame); }, drain);
+  drain();  // the final optimisation's placements
   stage->Finish();
 
   const auto& a = inline_session.cloud_stage()->mapper();
@@ -110,7 +101,7 @@ TEST(SlamSessionTest, CloudThroughASinkEqualsCloudInline) {
 TEST(SlamSessionTest, CloudSubmapsFollowTheFinalOptimisation) {
   common::InlineExecutor executor;
   SlamSession session(CloudConfig(), &executor);
-  Drive(&session, [] {});
+  DriveInline(&session);
   const auto& stats = session.builder().pose_graph().stats();
   ASSERT_GT(stats.optimizations, 0);
   ASSERT_GT(stats.loop_closures_found, 0);
@@ -138,7 +129,7 @@ TEST(SlamSessionTest, OdometryGoingBackIsNotRecorded) {
 TEST(SlamSessionTest, WritesTheRunOutputs) {
   common::InlineExecutor executor;
   SlamSession session(CloudConfig(), &executor);
-  Drive(&session, [] {});
+  DriveInline(&session);
   const std::string dir = ::testing::TempDir() + "/slam_session_outputs";
   std::filesystem::remove_all(dir);
   RunOutputsReport report;
