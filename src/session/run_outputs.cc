@@ -43,7 +43,8 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
   map.resolution_m = image.resolution_m;
   map.origin_m = image.origin_m;
   map.pixels = image.pixels;
-  if (!io::WriteMapPgmYaml(map, out + "map", error) || !io::WriteMapPng(map, xy, out + "map.png", error)) {
+  if (!io::WriteMapPgmYaml(map, out + "map", error) ||
+      !io::WriteMapPng(map, xy, out + "map.png", error)) {
     return false;
   }
   report->files.insert(report->files.end(), {out + "map.pgm", out + "map.yaml", out + "map.png"});

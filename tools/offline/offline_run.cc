@@ -188,11 +188,12 @@ int Run(const Args& args) {
     }
   }
   session.Finish();
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) std::fprintf(stderr, "\n");
   if (scans == 0) {
-    std::fprintf(stderr, "fusemap_offline: %s has no usable scans on channel %s\n", args.log.c_str(),
-                 config.channels.lidar.c_str());
+    std::fprintf(stderr, "fusemap_offline: %s has no usable scans on channel %s\n",
+                 args.log.c_str(), config.channels.lidar.c_str());
     return 1;
   }
 
@@ -238,10 +239,11 @@ int Run(const Args& args) {
   getrusage(RUSAGE_SELF, &usage);
   // A message still held at the end was a jump nothing confirmed.
   bad_stamps += gate.num_held();
-  std::printf("log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d "
-              "bad_stamps=%d time_resets=%lld\n",
-              args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order,
-              bad_stamps, static_cast<long long>(gate.filter().time_resets()));
+  std::printf(
+      "log=%s odometry=%zu other_messages=%d bad_messages=%d odometry_out_of_order=%d "
+      "bad_stamps=%d time_resets=%lld\n",
+      args.log.c_str(), odometry.size(), other_messages, bad_messages, odometry_out_of_order,
+      bad_stamps, static_cast<long long>(gate.filter().time_resets()));
   std::printf(
       "local_slam: scans=%d inserted=%d too_few_returns=%d out_of_order=%d "
       "initial_match_rejected=%d absurd_predictions=%d insertions_refused=%d\n",
