@@ -6,7 +6,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "fusemap/io/image_header.h"
+#include "image_header.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap_lcm/rgbd_frame_t.hpp"
 

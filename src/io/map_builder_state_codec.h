@@ -1,7 +1,7 @@
 #ifndef FUSEMAP_IO_MAP_BUILDER_STATE_CODEC_H_
 #define FUSEMAP_IO_MAP_BUILDER_STATE_CODEC_H_
 
-#include "fusemap/io/byte_buffer.h"
+#include "byte_buffer.h"
 #include "fusemap/pose_graph/map_builder_state_2d.h"
 
 namespace fusemap {

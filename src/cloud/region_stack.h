@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fusemap/cloud/cloud_types.h"
-#include "fusemap/cloud/voxel_key.h"
+#include "voxel_key.h"
 #include "fusemap/common/rigid_transform.h"
 
 namespace fusemap {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "fusemap/cloud/cloud_types.h"
-#include "fusemap/cloud/map_block_index.h"
+#include "map_block_index.h"
 #include "fusemap/common/rigid_transform.h"
 
 namespace fusemap {
