@@ -13,6 +13,7 @@
 #include "fusemap/common/math.h"
 #include "fusemap/daemon/engine.h"
 #include "fusemap/daemon/lcm_input.h"
+#include "fusemap/daemon/map_outputs.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
 #include "testing/room_drive_log.h"
