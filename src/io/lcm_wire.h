@@ -43,6 +43,16 @@ class WireCursor {
     pos_ += static_cast<int>(bytes);
     return true;
   }
+  // An LCM string: int32 length counting the terminating NUL (so at least 1), then the bytes.
+  bool SkipString() {
+    int32_t length = 0;
+    return ReadInt32(&length) && length >= 1 && Skip(length);
+  }
+  // A counted byte array: int32 length, then the bytes.
+  bool SkipBytes() {
+    int32_t length = 0;
+    return ReadInt32(&length) && Skip(length);
+  }
   // A counted float array: the count must be in [0, kMaxLaserBeams].
   bool SkipFloatArray(const char* name, int32_t* count, std::string* error) {
     if (!ReadInt32(count)) return Fail(std::string("truncated before ") + name, error);
