@@ -5,8 +5,8 @@
 #include <limits>
 
 #include "fusemap/common/math.h"
-#include "random.h"
 #include "fusemap/sim/ray_cast_2d.h"
+#include "random.h"
 #include "texture.h"
 
 namespace fusemap {
