@@ -1,6 +1,8 @@
 #include "fusemap/io/lcm_output_conversions.h"
 
 #include <cmath>
+#include <string>
+#include <utility>
 
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap_lcm/cloud_region_t.hpp"
@@ -16,6 +18,30 @@ namespace {
 
 void CopyVector(const Eigen::Vector3d& v, double* out) {
   for (int i = 0; i < 3; ++i) out[i] = v[i];
+}
+
+using lcm_wire::WireCursor;
+
+// Far above any real map or daemon; a larger count is a corrupt message.
+constexpr int32_t kMaxSubmaps = 1000000;
+constexpr int32_t kMaxHealthChannels = 1000;
+
+// Checks the fingerprint and reads the count that follows `header_bytes` of fixed fields.
+bool ReadCount(WireCursor* cursor, int64_t hash, const char* type, int header_bytes,
+               int32_t max_count, int32_t* count, std::string* error) {
+  int64_t fingerprint = 0;
+  if (!cursor->ReadInt64(&fingerprint)) return WireCursor::Fail("truncated fingerprint", error);
+  if (fingerprint != hash) {
+    return WireCursor::Fail(std::string("fingerprint is not ") + type, error);
+  }
+  if (!cursor->Skip(header_bytes) || !cursor->ReadInt32(count)) {
+    return WireCursor::Fail(std::string("truncated ") + type + " header", error);
+  }
+  if (*count < 0 || *count > max_count) {
+    return WireCursor::Fail(std::string("absurd count ") + std::to_string(*count) + " in " + type,
+                            error);
+  }
+  return true;
 }
 
 }  // namespace
@@ -52,7 +78,7 @@ bool DecodePose(const void* data, int size, PoseMessage* out, std::string* error
   using lcm_wire::AllFinite;
   if (!AllFinite(msg.pos, 3) || !AllFinite(msg.vel, 3) || !AllFinite(msg.orientation, 4) ||
       !AllFinite(msg.rotation_rate, 3) || !AllFinite(msg.accel, 3)) {
-    return lcm_wire::WireCursor::Fail("non-finite pose field", error);
+    return WireCursor::Fail("non-finite pose field", error);
   }
   out->stamp_s = UtimeToStamp(msg.utime);
   out->position_m = Eigen::Map<const Eigen::Vector3d>(msg.pos);
@@ -76,6 +102,34 @@ std::vector<uint8_t> EncodeSubmapList(double stamp_s,
     msg.theta.push_back(T.angle_rad());
   }
   return lcm_wire::Encode(msg);
+}
+
+bool DecodeSubmapList(const void* data, int size, double* stamp_s,
+                      pose_graph::PoseGraphSnapshot* out, std::string* error) {
+  using Msg = fusemap_lcm::submap_list_t;
+  WireCursor cursor(data, size);
+  int32_t n = 0;
+  if (!ReadCount(&cursor, Msg::getHash(), Msg::getTypeName(), 16, kMaxSubmaps, &n, error)) {
+    return false;
+  }
+  if (!cursor.Skip(3 * 8 * static_cast<int64_t>(n))) {
+    return WireCursor::Fail("truncated submap_list_t poses", error);
+  }
+  if (!cursor.AtEnd(error)) return false;
+  Msg msg;
+  if (msg.decode(data, 0, size) != size) return WireCursor::Fail("decode failed", error);
+  pose_graph::PoseGraphSnapshot snapshot;
+  snapshot.solve_count = static_cast<std::uint64_t>(msg.solve_count);
+  for (int i = 0; i < n; ++i) {
+    const double pose[3] = {msg.x[i], msg.y[i], msg.theta[i]};
+    if (!lcm_wire::AllFinite(pose, 3)) {
+      return WireCursor::Fail("non-finite pose of submap " + std::to_string(i), error);
+    }
+    snapshot.T_map_submaps.emplace_back(msg.x[i], msg.y[i], msg.theta[i]);
+  }
+  *stamp_s = UtimeToStamp(msg.utime);
+  *out = std::move(snapshot);
+  return true;
 }
 
 std::vector<uint8_t> EncodeLoopClosure(double stamp_s, int new_loop_closures,
@@ -114,6 +168,54 @@ std::vector<uint8_t> EncodeHealth(double stamp_s, const HealthReport& report) {
   msg.checkpoint_failures = report.checkpoint_failures;
   msg.time_resets = report.time_resets;
   return lcm_wire::Encode(msg);
+}
+
+bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out,
+                  std::string* error) {
+  using Msg = fusemap_lcm::health_t;
+  WireCursor cursor(data, size);
+  int32_t n = 0;
+  if (!ReadCount(&cursor, Msg::getHash(), Msg::getTypeName(), 16, kMaxHealthChannels, &n,
+                 error)) {
+    return false;
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!cursor.SkipString()) return WireCursor::Fail("bad health_t channel name", error);
+  }
+  // received, dropped, malformed (int64) and queue_depth (int32) per channel; then three
+  // latencies, rss_bytes, five graph counts, checkpoint_failures and time_resets.
+  constexpr int kTailBytes = 3 * 8 + 8 + 5 * 4 + 4 + 8;
+  if (!cursor.Skip((3 * 8 + 4) * static_cast<int64_t>(n)) || !cursor.Skip(kTailBytes)) {
+    return WireCursor::Fail("truncated health_t", error);
+  }
+  if (!cursor.AtEnd(error)) return false;
+  Msg msg;
+  if (msg.decode(data, 0, size) != size) return WireCursor::Fail("decode failed", error);
+  HealthReport report;
+  report.uptime_s = msg.uptime_s;
+  for (int i = 0; i < n; ++i) {
+    HealthReport::Channel channel;
+    channel.name = msg.channel[i];
+    channel.received = msg.received[i];
+    channel.dropped = msg.dropped[i];
+    channel.malformed = msg.malformed[i];
+    channel.queue_depth = msg.queue_depth[i];
+    report.channels.push_back(std::move(channel));
+  }
+  report.latency.median_ms = msg.latency_median_ms;
+  report.latency.p99_ms = msg.latency_p99_ms;
+  report.latency.max_ms = msg.latency_max_ms;
+  report.rss_bytes = msg.rss_bytes;
+  report.nodes = msg.nodes;
+  report.submaps = msg.submaps;
+  report.constraints = msg.constraints;
+  report.loop_closures = msg.loop_closures;
+  report.optimizations = msg.optimizations;
+  report.checkpoint_failures = msg.checkpoint_failures;
+  report.time_resets = msg.time_resets;
+  *stamp_s = UtimeToStamp(msg.utime);
+  *out = std::move(report);
+  return true;
 }
 
 std::vector<uint8_t> EncodeCloudRegion(const CloudRegionUpdate& update) {

@@ -235,6 +235,111 @@ TEST(LcmOutputConversionsTest, HealthFields) {
   EXPECT_EQ(Bytes(msg), bytes);
 }
 
+TEST(LcmOutputConversionsTest, SubmapListRoundTrip) {
+  pose_graph::PoseGraphSnapshot in;
+  in.solve_count = 9;
+  in.T_map_submaps = TestPoses();
+  const std::vector<uint8_t> bytes = EncodeSubmapList(4.5, in);
+  double stamp_s = 0.0;
+  pose_graph::PoseGraphSnapshot out;
+  std::string error;
+  ASSERT_TRUE(DecodeSubmapList(bytes.data(), static_cast<int>(bytes.size()), &stamp_s, &out,
+                               &error))
+      << error;
+  EXPECT_EQ(stamp_s, 4.5);
+  EXPECT_EQ(out.solve_count, 9u);
+  ASSERT_EQ(out.T_map_submaps.size(), in.T_map_submaps.size());
+  for (size_t i = 0; i < in.T_map_submaps.size(); ++i) {
+    EXPECT_EQ(out.T_map_submaps[i].translation(), in.T_map_submaps[i].translation());
+    EXPECT_EQ(out.T_map_submaps[i].angle_rad(), in.T_map_submaps[i].angle_rad());
+  }
+}
+
+HealthReport TwoChannelReport() {
+  HealthReport report;
+  report.uptime_s = 10.0;
+  report.channels.push_back({"LIDAR", 250, 1, 2, 3, 0});
+  report.channels.push_back({"ODOMETRY", 500, 0, 0, 1, 0});
+  report.latency.median_ms = 2.0;
+  report.rss_bytes = 1 << 20;
+  report.nodes = 40;
+  report.time_resets = 1;
+  return report;
+}
+
+TEST(LcmOutputConversionsTest, HealthRoundTrip) {
+  const HealthReport in = TwoChannelReport();
+  const std::vector<uint8_t> bytes = EncodeHealth(11.0, in);
+  double stamp_s = 0.0;
+  HealthReport out;
+  std::string error;
+  ASSERT_TRUE(DecodeHealth(bytes.data(), static_cast<int>(bytes.size()), &stamp_s, &out, &error))
+      << error;
+  EXPECT_EQ(stamp_s, 11.0);
+  ASSERT_EQ(out.channels.size(), 2u);
+  EXPECT_EQ(out.channels[1].name, "ODOMETRY");
+  EXPECT_EQ(out.channels[0].received, 250);
+  EXPECT_EQ(out.channels[0].malformed, 2);
+  EXPECT_EQ(out.channels[0].queue_depth, 3);
+  EXPECT_EQ(out.latency.median_ms, 2.0);
+  EXPECT_EQ(out.rss_bytes, 1 << 20);
+  EXPECT_EQ(out.nodes, 40);
+  EXPECT_EQ(out.time_resets, 1);
+  EXPECT_EQ(EncodeHealth(stamp_s, out), bytes);
+}
+
+// Every prefix and one extra byte are refused with a reason; none crashes the decoder.
+template <class Decode>
+void ExpectEveryTruncationRefused(const std::vector<uint8_t>& bytes, Decode decode) {
+  for (size_t n = 0; n < bytes.size(); ++n) {
+    std::string error;
+    EXPECT_FALSE(decode(std::vector<uint8_t>(bytes.begin(), bytes.begin() + n), &error)) << n;
+    EXPECT_FALSE(error.empty()) << n;
+  }
+  std::vector<uint8_t> longer = bytes;
+  longer.push_back(0);
+  std::string error;
+  EXPECT_FALSE(decode(longer, &error));
+  EXPECT_NE(error.find("trailing"), std::string::npos) << error;
+}
+
+TEST(LcmOutputConversionsTest, SubmapListAndHealthRefuseTruncatedAndLongerMessages) {
+  pose_graph::PoseGraphSnapshot snapshot;
+  snapshot.T_map_submaps = TestPoses();
+  ExpectEveryTruncationRefused(
+      EncodeSubmapList(1.0, snapshot), [](const std::vector<uint8_t>& b, std::string* error) {
+        double stamp_s;
+        pose_graph::PoseGraphSnapshot out;
+        return DecodeSubmapList(b.data(), static_cast<int>(b.size()), &stamp_s, &out, error);
+      });
+  ExpectEveryTruncationRefused(
+      EncodeHealth(1.0, TwoChannelReport()), [](const std::vector<uint8_t>& b, std::string* error) {
+        double stamp_s;
+        HealthReport out;
+        return DecodeHealth(b.data(), static_cast<int>(b.size()), &stamp_s, &out, error);
+      });
+}
+
+TEST(LcmOutputConversionsTest, AbsurdCountsAreRefusedBeforeDecoding) {
+  fusemap_lcm::health_t health{};
+  health.nchannels = -1;  // The generated encoder writes the count as given.
+  std::vector<uint8_t> bytes = Bytes(health);
+  double stamp_s;
+  HealthReport report;
+  std::string error;
+  EXPECT_FALSE(DecodeHealth(bytes.data(), static_cast<int>(bytes.size()), &stamp_s, &report,
+                            &error));
+  EXPECT_NE(error.find("absurd count -1"), std::string::npos) << error;
+
+  pose_graph::PoseGraphSnapshot snapshot;
+  snapshot.T_map_submaps = TestPoses();
+  bytes = EncodeSubmapList(1.0, snapshot);
+  bytes[8 + 16] = 0x7f;  // nsubmaps' most significant byte.
+  EXPECT_FALSE(DecodeSubmapList(bytes.data(), static_cast<int>(bytes.size()), &stamp_s,
+                                &snapshot, &error));
+  EXPECT_NE(error.find("absurd count"), std::string::npos) << error;
+}
+
 TEST(LcmOutputConversionsTest, CloudRegionFields) {
   CloudRegionUpdate update;
   update.stamp_s = 9.0;

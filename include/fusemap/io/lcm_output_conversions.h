@@ -18,7 +18,8 @@ namespace fusemap {
 namespace io {
 
 // Encoders of what fusemapd and the simulator publish (the input messages are in
-// lcm_conversions.h): the daemon and the tools only put these bytes on a channel.
+// lcm_conversions.h): the daemon and the tools only put these bytes on a channel. The decoders
+// read recordings of that output back (tests, evaluation).
 
 // What fusemap_lcm::pose_t (libbot2 bot_core.pose_t) carries. The frames of velocity,
 // rotation rate and acceleration are the sender's (the simulator's ground truth: velocity in
@@ -43,6 +44,11 @@ bool DecodePose(const void* data, int size, PoseMessage* out, std::string* error
 std::vector<uint8_t> EncodeSubmapList(double stamp_s,
                                       const pose_graph::PoseGraphSnapshot& snapshot);
 
+// Checks the layout (counts within bounds, no trailing bytes) before decoding; refuses
+// non-finite poses. Fills solve_count and T_map_submaps.
+bool DecodeSubmapList(const void* data, int size, double* stamp_s,
+                      pose_graph::PoseGraphSnapshot* out, std::string* error);
+
 // fusemap_lcm::loop_closure_t: new and total loop closures, optimisations, the latest node.
 std::vector<uint8_t> EncodeLoopClosure(double stamp_s, int new_loop_closures,
                                        const pose_graph::PoseGraph2D::Stats& stats,
@@ -50,6 +56,10 @@ std::vector<uint8_t> EncodeLoopClosure(double stamp_s, int new_loop_closures,
 
 // fusemap_lcm::health_t (skipped and trimmed_* are not on the wire).
 std::vector<uint8_t> EncodeHealth(double stamp_s, const HealthReport& report);
+
+// Checks the layout before decoding; skipped and trimmed_* come back 0.
+bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out,
+                  std::string* error);
 
 // One changed region of the coloured map, its points in the submap frame.
 struct CloudRegionUpdate {
