@@ -7,11 +7,11 @@
 #include <cstdlib>
 #include <unordered_set>
 
-#include "fusemap/cloud/depth_carver.h"
-#include "fusemap/cloud/free_space_carver.h"
-#include "fusemap/cloud/map_block_index.h"
-#include "fusemap/cloud/region_stack.h"
-#include "fusemap/cloud/revisit_merger.h"
+#include "depth_carver.h"
+#include "free_space_carver.h"
+#include "map_block_index.h"
+#include "region_stack.h"
+#include "revisit_merger.h"
 
 namespace fusemap {
 namespace cloud {

@@ -1,4 +1,4 @@
-#include "fusemap/cloud/free_space_carver.h"
+#include "free_space_carver.h"
 
 #include <octomap/OcTree.h>
 

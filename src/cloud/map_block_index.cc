@@ -1,4 +1,4 @@
-#include "fusemap/cloud/map_block_index.h"
+#include "map_block_index.h"
 
 #include <algorithm>
 #include <cassert>

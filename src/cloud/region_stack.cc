@@ -1,4 +1,4 @@
-#include "fusemap/cloud/region_stack.h"
+#include "region_stack.h"
 
 #include <cassert>
 #include <limits>

@@ -1,11 +1,11 @@
-#include "fusemap/cloud/revisit_merger.h"
+#include "revisit_merger.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <unordered_map>
 
-#include "fusemap/cloud/region_stack.h"
+#include "region_stack.h"
 
 namespace fusemap {
 namespace cloud {

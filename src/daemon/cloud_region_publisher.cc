@@ -4,8 +4,9 @@
 #include <lcm/lcm-cpp.hpp>
 #include <utility>
 
-#include "fusemap/io/lcm_conversions.h"
-#include "fusemap_lcm/cloud_region_t.hpp"
+#include <vector>
+
+#include "fusemap/io/lcm_output_conversions.h"
 
 namespace fusemap {
 namespace daemon {
@@ -37,29 +38,10 @@ LcmCloudRegionPublisher::LcmCloudRegionPublisher(lcm::LCM* lcm, std::string chan
     : lcm_(lcm), channel_(std::move(channel)) {}
 
 void LcmCloudRegionPublisher::PublishCloudRegion(const CloudRegionUpdate& update) {
-  fusemap_lcm::cloud_region_t msg;
-  msg.utime = io::StampToUtime(update.stamp_s);
-  msg.submap_id = update.submap_id;
-  const Eigen::Vector3d t = update.T_map_submap.translation();
-  const Eigen::Quaterniond q = update.T_map_submap.rotation();
-  msg.T_map_submap.translation[0] = t.x();
-  msg.T_map_submap.translation[1] = t.y();
-  msg.T_map_submap.translation[2] = t.z();
-  msg.T_map_submap.rotation[0] = q.w();
-  msg.T_map_submap.rotation[1] = q.x();
-  msg.T_map_submap.rotation[2] = q.y();
-  msg.T_map_submap.rotation[3] = q.z();
-  msg.total_points = static_cast<int32_t>(update.total_points);
-  const cloud::ColorCloud& points = *update.points_submap;
-  msg.npoints = static_cast<int32_t>(points.size());
-  msg.xyz.reserve(points.size());
-  msg.rgb.reserve(points.size());
-  for (const cloud::ColorPoint& p : points) {
-    msg.xyz.push_back({p.x, p.y, p.z});
-    msg.rgb.push_back({p.r, p.g, p.b});
-  }
   ++published_;
-  if (lcm_ != nullptr) lcm_->publish(channel_, &msg);
+  if (lcm_ == nullptr) return;
+  const std::vector<uint8_t> bytes = io::EncodeCloudRegion(update);
+  lcm_->publish(channel_, bytes.data(), static_cast<unsigned int>(bytes.size()));
 }
 
 }  // namespace daemon

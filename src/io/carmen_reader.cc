@@ -8,9 +8,9 @@
 #include <deque>
 #include <sstream>
 
-#include "fusemap/io/carmen_line_parser.h"
-#include "fusemap/io/carmen_stamp_repair.h"
 #include "fusemap/io/lcm_conversions.h"
+#include "carmen_line_parser.h"
+#include "carmen_stamp_repair.h"
 
 namespace fusemap {
 namespace io {

@@ -1,4 +1,4 @@
-#include "fusemap/io/carmen_stamp_repair.h"
+#include "carmen_stamp_repair.h"
 
 #include <algorithm>
 #include <cassert>

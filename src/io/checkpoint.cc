@@ -12,10 +12,10 @@
 #include <fstream>
 #include <utility>
 
-#include "fusemap/io/byte_buffer.h"
-#include "fusemap/io/map_builder_state_codec.h"
-#include "fusemap/io/submap_state_codec.h"
-#include "fusemap/io/write_all.h"
+#include "byte_buffer.h"
+#include "map_builder_state_codec.h"
+#include "submap_state_codec.h"
+#include "write_all.h"
 
 namespace fusemap {
 namespace io {

@@ -16,8 +16,8 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "fusemap/io/ply_header.h"
-#include "fusemap/io/write_all.h"
+#include "ply_header.h"
+#include "write_all.h"
 
 namespace fusemap {
 namespace io {

@@ -5,8 +5,8 @@
 #include <iterator>
 #include <opencv2/imgcodecs.hpp>
 
-#include "fusemap/io/image_header.h"
-#include "fusemap/io/write_all.h"
+#include "image_header.h"
+#include "write_all.h"
 
 namespace fusemap {
 namespace io {

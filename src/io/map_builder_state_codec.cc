@@ -1,9 +1,9 @@
-#include "fusemap/io/map_builder_state_codec.h"
+#include "map_builder_state_codec.h"
 
 #include <algorithm>
 #include <string>
 
-#include "fusemap/io/submap_state_codec.h"
+#include "submap_state_codec.h"
 
 namespace fusemap {
 namespace io {

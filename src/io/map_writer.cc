@@ -1,6 +1,6 @@
 #include "fusemap/io/map_writer.h"
 #include "fusemap/io/image_file.h"
-#include "fusemap/io/write_all.h"
+#include "write_all.h"
 
 #include <cstdio>
 #include <opencv2/core.hpp>

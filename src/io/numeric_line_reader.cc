@@ -1,4 +1,4 @@
-#include "fusemap/io/numeric_line_reader.h"
+#include "numeric_line_reader.h"
 
 #include <cmath>
 #include <cstdlib>

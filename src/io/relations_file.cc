@@ -2,7 +2,7 @@
 
 #include <fstream>
 
-#include "fusemap/io/numeric_line_reader.h"
+#include "numeric_line_reader.h"
 
 namespace fusemap {
 namespace io {

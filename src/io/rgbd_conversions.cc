@@ -6,9 +6,10 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "fusemap/io/image_header.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap_lcm/rgbd_frame_t.hpp"
+#include "image_header.h"
+#include "lcm_wire.h"
 
 namespace fusemap {
 namespace io {
@@ -18,40 +19,6 @@ bool Fail(const std::string& reason, std::string* error) {
   *error = reason;
   return false;
 }
-
-// Checks the counted fields of rgbd_frame_t before the generated decoder (which trusts them:
-// a bad count would make it resize to a huge size or assign a negative-length string).
-class LayoutChecker {
- public:
-  LayoutChecker(const uint8_t* data, int size) : data_(data), size_(size) {}
-  bool Skip(int64_t n) {
-    if (n < 0 || size_ - pos_ < n) return false;
-    pos_ += static_cast<int>(n);
-    return true;
-  }
-  bool Int32(int32_t* value) {
-    if (size_ - pos_ < 4) return false;
-    uint32_t v = 0;
-    for (int i = 0; i < 4; ++i) v = (v << 8) | data_[pos_ + i];
-    pos_ += 4;
-    *value = static_cast<int32_t>(v);
-    return true;
-  }
-  bool String() {
-    int32_t length = 0;
-    return Int32(&length) && length >= 1 && Skip(length);
-  }
-  bool Bytes() {
-    int32_t length = 0;
-    return Int32(&length) && Skip(length);
-  }
-  bool AtEnd() const { return pos_ == size_; }
-
- private:
-  const uint8_t* data_;
-  int size_;
-  int pos_ = 0;
-};
 
 void ToLcm(const sensor::PinholeIntrinsics& k, fusemap_lcm::camera_intrinsics_t* msg) {
   msg->width = k.width;
@@ -225,17 +192,18 @@ cv::Mat ImDecode(const std::vector<uint8_t>& data, int flags) {
 
 bool DecodeRgbdFrameHeader(const void* data, int size, sensor::RgbdFrame* frame,
                            RgbdImageData* images, std::string* error) {
-  if (data == nullptr || size < 8) return Fail("truncated rgbd_frame_t (no fingerprint)", error);
-  const uint8_t* bytes = static_cast<const uint8_t*>(data);
+  // The generated decoder trusts the counted fields (a bad count would make it resize to a
+  // huge size or assign a negative-length string): check the layout first.
+  lcm_wire::WireCursor layout(data, size);
   int64_t hash = 0;
-  for (int i = 0; i < 8; ++i) hash = static_cast<int64_t>((static_cast<uint64_t>(hash) << 8) | bytes[i]);
+  if (!layout.ReadInt64(&hash)) return Fail("truncated rgbd_frame_t (no fingerprint)", error);
   if (hash != fusemap_lcm::rgbd_frame_t::getHash()) return Fail("fingerprint is not rgbd_frame_t", error);
-  LayoutChecker layout(bytes, size);
-  // fingerprint + utime, frame, 2 x intrinsics (2 int32 + 4 double), 2 x transform (7 double).
-  const bool layout_ok = layout.Skip(16) && layout.String() && layout.Skip(2 * 40 + 2 * 56) &&
-                         layout.String() && layout.Bytes() && layout.String() && layout.Bytes();
+  // utime, frame, 2 x intrinsics (2 int32 + 4 double), 2 x transform (7 double), images.
+  const bool layout_ok = layout.Skip(8) && layout.SkipString() && layout.Skip(2 * 40 + 2 * 56) &&
+                         layout.SkipString() && layout.SkipBytes() && layout.SkipString() &&
+                         layout.SkipBytes();
   if (!layout_ok) return Fail("truncated or corrupt rgbd_frame_t (bad length field)", error);
-  if (!layout.AtEnd()) return Fail("trailing bytes after rgbd_frame_t", error);
+  if (!layout.AtEnd(nullptr)) return Fail("trailing bytes after rgbd_frame_t", error);
   fusemap_lcm::rgbd_frame_t msg;
   if (msg.decode(data, 0, size) != size) return Fail("rgbd_frame_t decode failed", error);
 

@@ -4,7 +4,7 @@
 #include <utility>
 
 #include "fusemap/io/lcm_conversions.h"
-#include "fusemap/io/numeric_line_reader.h"
+#include "numeric_line_reader.h"
 
 namespace fusemap {
 namespace io {

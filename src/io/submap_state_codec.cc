@@ -1,4 +1,4 @@
-#include "fusemap/io/submap_state_codec.h"
+#include "submap_state_codec.h"
 
 #include <zlib.h>
 

@@ -12,9 +12,9 @@
 #include <system_error>
 #include <utility>
 
-#include "fusemap/io/byte_buffer.h"
-#include "fusemap/io/submap_state_codec.h"
-#include "fusemap/io/write_all.h"
+#include "byte_buffer.h"
+#include "submap_state_codec.h"
+#include "write_all.h"
 
 namespace fusemap {
 namespace io {

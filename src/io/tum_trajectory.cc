@@ -3,8 +3,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "fusemap/io/numeric_line_reader.h"
-#include "fusemap/io/write_all.h"
+#include "numeric_line_reader.h"
+#include "write_all.h"
 
 namespace fusemap {
 namespace io {

@@ -6,7 +6,7 @@
 #include <cassert>
 #include <cmath>
 
-#include "fusemap/mapping/scan_matching/occupied_space_cost_function_2d.h"
+#include "occupied_space_cost_function_2d.h"
 
 namespace fusemap {
 namespace mapping {

@@ -1,4 +1,4 @@
-#include "fusemap/mapping/scan_matching/occupied_space_cost_function_2d.h"
+#include "occupied_space_cost_function_2d.h"
 
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/cubic_interpolation.h>

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "fusemap/sim/random.h"
+#include "random.h"
 
 namespace fusemap {
 namespace sim {

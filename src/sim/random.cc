@@ -1,6 +1,6 @@
-#include "fusemap/sim/random.h"
+#include "random.h"
 
-#include "fusemap/sim/texture.h"
+#include "texture.h"
 
 namespace fusemap {
 namespace sim {

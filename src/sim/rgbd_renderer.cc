@@ -5,9 +5,9 @@
 #include <limits>
 
 #include "fusemap/common/math.h"
-#include "fusemap/sim/random.h"
 #include "fusemap/sim/ray_cast_2d.h"
-#include "fusemap/sim/texture.h"
+#include "random.h"
+#include "texture.h"
 
 namespace fusemap {
 namespace sim {

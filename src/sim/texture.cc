@@ -1,4 +1,4 @@
-#include "fusemap/sim/texture.h"
+#include "texture.h"
 
 #include <cmath>
 

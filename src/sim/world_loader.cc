@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "fusemap/common/math.h"
-#include "fusemap/sim/texture.h"
+#include "texture.h"
 
 namespace fusemap {
 namespace sim {

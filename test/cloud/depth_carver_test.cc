@@ -1,4 +1,4 @@
-#include "fusemap/cloud/depth_carver.h"
+#include "depth_carver.h"
 
 #include <gtest/gtest.h>
 

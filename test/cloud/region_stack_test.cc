@@ -1,4 +1,4 @@
-#include "fusemap/cloud/region_stack.h"
+#include "region_stack.h"
 
 #include <gtest/gtest.h>
 

@@ -1,8 +1,8 @@
-#include "fusemap/cloud/revisit_merger.h"
+#include "revisit_merger.h"
 
 #include <gtest/gtest.h>
 
-#include "fusemap/cloud/region_stack.h"
+#include "region_stack.h"
 
 namespace fusemap {
 namespace cloud {

@@ -4,9 +4,7 @@
 #include <string>
 
 #include "fusemap/io/lcm_log.h"
-#include "fusemap_lcm/health_t.hpp"
-#include "fusemap_lcm/pose_t.hpp"
-#include "fusemap_lcm/submap_list_t.hpp"
+#include "fusemap/io/lcm_output_conversions.h"
 
 int main(int argc, char** argv) {
   if (argc != 2 || std::string(argv[1]) == "--help") {
@@ -24,23 +22,26 @@ int main(int argc, char** argv) {
   fusemap::io::LogEvent event;
   while (reader.Next(&event)) {
     const int size = static_cast<int>(event.data.size());
+    double stamp_s = 0.0;
     if (event.channel == "FUSEMAP_POSE") {
-      fusemap_lcm::pose_t msg;
-      msg.decode(event.data.data(), 0, size) == size ? ++poses : ++bad;
+      fusemap::io::PoseMessage pose;
+      fusemap::io::DecodePose(event.data.data(), size, &pose, &error) ? ++poses : ++bad;
     } else if (event.channel == "FUSEMAP_HEALTH") {
-      fusemap_lcm::health_t msg;
-      if (msg.decode(event.data.data(), 0, size) != size) {
+      fusemap::io::HealthReport report;
+      if (!fusemap::io::DecodeHealth(event.data.data(), size, &stamp_s, &report, &error)) {
         ++bad;
         continue;
       }
       ++health;
-      last_nodes = msg.nodes;
-      for (int i = 0; i < msg.nchannels; ++i) {
-        if (msg.channel[i] == "LIDAR") last_lidar_received = msg.received[i];
+      last_nodes = report.nodes;
+      for (const auto& channel : report.channels) {
+        if (channel.name == "LIDAR") last_lidar_received = channel.received;
       }
     } else if (event.channel == "FUSEMAP_SUBMAPS") {
-      fusemap_lcm::submap_list_t msg;
-      msg.decode(event.data.data(), 0, size) == size ? ++submap_lists : ++bad;
+      fusemap::pose_graph::PoseGraphSnapshot snapshot;
+      fusemap::io::DecodeSubmapList(event.data.data(), size, &stamp_s, &snapshot, &error)
+          ? ++submap_lists
+          : ++bad;
     }
   }
   std::printf("poses=%d health=%d submap_lists=%d undecodable=%d last_health_nodes=%lld "

@@ -1,4 +1,4 @@
-#include "fusemap/io/carmen_line_parser.h"
+#include "carmen_line_parser.h"
 
 #include <gtest/gtest.h>
 

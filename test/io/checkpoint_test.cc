@@ -9,9 +9,9 @@
 #include <random>
 #include <string>
 
-#include "fusemap/io/byte_buffer.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "testing/synthetic_room.h"
+#include "byte_buffer.h"
 
 namespace fusemap {
 namespace io {

@@ -1,4 +1,4 @@
-#include "fusemap/io/image_header.h"
+#include "image_header.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "fusemap/io/ply_header.h"
+#include "ply_header.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "fusemap/io/write_all.h"
+#include "write_all.h"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>

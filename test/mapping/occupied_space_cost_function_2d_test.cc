@@ -1,4 +1,4 @@
-#include "fusemap/mapping/scan_matching/occupied_space_cost_function_2d.h"
+#include "occupied_space_cost_function_2d.h"
 
 #include <gtest/gtest.h>
 

@@ -6,12 +6,12 @@
 
 #include <pcl/common/transforms.h>
 
-#include "cloud_eval.h"
+#include "fusemap/cloud_eval/cloud_eval.h"
 #include "fusemap/common/command_line.h"
 #include "fusemap/eval/absolute_trajectory_error.h"
 #include "fusemap/io/cloud_writer.h"
 #include "fusemap/io/tum_trajectory.h"
-#include "landmark_eval.h"
+#include "fusemap/cloud_eval/landmark_eval.h"
 #include "fusemap/sim/world_loader.h"
 
 namespace {
@@ -130,7 +130,7 @@ int Evaluate(Args args) {
     std::fprintf(stderr, "fusemap_cloudeval: aligned to the world with ATE rmse %.4f m\n",
                  ate.trans_m.rmse);
   }
-  const fusemap::cloudeval_tool::CloudEvalResult result = fusemap::cloudeval_tool::EvaluateCloud(
+  const fusemap::cloud_eval::CloudEvalResult result = fusemap::cloud_eval::EvaluateCloud(
       world, kept, have_removed ? &removed : nullptr, static_tolerance_m);
   std::fprintf(stderr,
                "fusemap_cloudeval: map %zu points (%lld static, %lld dynamic); removed %zu points "
@@ -139,11 +139,11 @@ int Evaluate(Args args) {
                static_cast<long long>(result.kept_dynamic), removed.size(),
                static_cast<long long>(result.removed_static),
                static_cast<long long>(result.removed_dynamic));
-  std::printf("%s\n", fusemap::cloudeval_tool::FormatCloudEvalLine(result).c_str());
-  const auto pairs = fusemap::cloudeval_tool::EvaluateLandmarkPairs(world, kept, camera_height_m);
-  std::printf("%s\n", fusemap::cloudeval_tool::FormatLandmarkSummary(pairs).c_str());
+  std::printf("%s\n", fusemap::cloud_eval::FormatCloudEvalLine(result).c_str());
+  const auto pairs = fusemap::cloud_eval::EvaluateLandmarkPairs(world, kept, camera_height_m);
+  std::printf("%s\n", fusemap::cloud_eval::FormatLandmarkSummary(pairs).c_str());
   for (const auto& pair : pairs) {
-    std::printf("%s\n", fusemap::cloudeval_tool::FormatLandmarkPair(pair).c_str());
+    std::printf("%s\n", fusemap::cloud_eval::FormatLandmarkPair(pair).c_str());
   }
   return 0;
 }

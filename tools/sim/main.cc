@@ -8,9 +8,10 @@
 #include <string>
 
 #include "fusemap/common/command_line.h"
+#include "fusemap/common/thread_pool.h"
 #include "fusemap/sim/simulation.h"
 #include "fusemap/sim/world_loader.h"
-#include "sim_log.h"
+#include "fusemap/sim_log/sim_log.h"
 
 namespace {
 
@@ -87,10 +88,12 @@ int Simulate(const Args& args) {
     return 1;
   }
 
-  fusemap::sim_tool::SimLogOptions log_options;
+  fusemap::sim_log::SimLogOptions log_options;
   log_options.log_path = out_dir + "/sim.lcm";
   log_options.groundtruth_tum_path = out_dir + "/groundtruth.tum";
-  log_options.threads = threads;
+  fusemap::common::ThreadPool render_pool(threads);
+  log_options.render_executor = &render_pool;
+  log_options.render_batch = 4 * threads;
   const double seconds = options.seconds;
   log_options.progress = [seconds](double t, int64_t messages) {
     std::fprintf(stderr, "\rfusemap_sim: %6.1f / %.1f s simulated, %lld messages", t, seconds,
@@ -98,8 +101,8 @@ int Simulate(const Args& args) {
     std::fflush(stderr);
   };
   const auto start = std::chrono::steady_clock::now();
-  fusemap::sim_tool::SimLogSummary summary;
-  if (!fusemap::sim_tool::WriteSimulationLog(*simulation, log_options, &summary, &error)) {
+  fusemap::sim_log::SimLogSummary summary;
+  if (!fusemap::sim_log::WriteSimulationLog(*simulation, log_options, &summary, &error)) {
     std::fprintf(stderr, "\nfusemap_sim: %s\n", error.c_str());
     return 1;
   }

@@ -8,6 +8,7 @@
 
 #include "fusemap/cloud/cloud_types.h"
 #include "fusemap/common/rigid_transform.h"
+#include "fusemap/io/lcm_output_conversions.h"
 
 namespace lcm {
 class LCM;
@@ -16,14 +17,9 @@ class LCM;
 namespace fusemap {
 namespace daemon {
 
-// One changed region of the coloured map, its points in the submap frame.
-struct CloudRegionUpdate {
-  double stamp_s = 0.0;
-  int submap_id = -1;
-  common::Rigid3d T_map_submap;
-  size_t total_points = 0;  // in the region, before decimation
-  cloud::ColorCloud::Ptr points_submap;
-};
+// One changed region of the coloured map, its points in the submap frame (defined in io,
+// which encodes it as fusemap_lcm::cloud_region_t).
+using CloudRegionUpdate = io::CloudRegionUpdate;
 
 // `map_points` (map frame) in the submap frame, keeping every k-th point so at most
 // `max_points` remain.

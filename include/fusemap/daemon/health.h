@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "fusemap/io/health_report.h"
+
 namespace fusemap {
 namespace daemon {
 
@@ -26,12 +28,7 @@ class LatencyWindow {
  public:
   explicit LatencyWindow(size_t window = 2000) : window_(window) {}
   void Add(double latency_ms);
-  struct Summary {
-    double median_ms = 0.0;
-    double p99_ms = 0.0;
-    double max_ms = 0.0;
-    size_t count = 0;
-  };
+  using Summary = io::LatencySummary;
   Summary Summarize() const;
 
  private:
@@ -49,33 +46,8 @@ int64_t ResidentMemoryBytes();
 // Returns free heap pages to the system (glibc's malloc_trim; a no-op elsewhere).
 void ReleaseFreeMemory();
 
-// One health report: what fusemap_lcm::health_t carries, as plain values.
-struct HealthReport {
-  double uptime_s = 0.0;
-  struct Channel {
-    std::string name;
-    int64_t received = 0;
-    int64_t dropped = 0;
-    int64_t malformed = 0;
-    int queue_depth = 0;
-    int64_t skipped = 0;  // after --resume: already in the checkpoint
-  };
-  std::vector<Channel> channels;
-  LatencyWindow::Summary latency;
-  int64_t rss_bytes = 0;
-  // In the graph now: trimming (lifelong mapping) removes what newer submaps cover again.
-  int nodes = 0;
-  int submaps = 0;
-  int constraints = 0;
-  int trimmed_nodes = 0;
-  int trimmed_submaps = 0;
-  int loop_closures = 0;
-  int optimizations = 0;
-  // Checkpoints or trajectory-archive appends that could not be written, and time resets of
-  // the input (see Intake).
-  int checkpoint_failures = 0;
-  int64_t time_resets = 0;
-};
+// The report the publisher sends as fusemap_lcm::health_t (defined in io, which encodes it).
+using HealthReport = io::HealthReport;
 
 // One line for logs: "nodes=.. submaps=.. LIDAR=rx/drop/bad ... p50=..ms p99=..ms rss=..MB",
 // with "resume_skipped=N" (all channels) once anything was skipped after --resume.

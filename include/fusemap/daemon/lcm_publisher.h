@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fusemap/daemon/publisher.h"
 
@@ -22,8 +23,9 @@ struct OutputChannels {
 };
 
 // Publishes the engine's outputs as fusemap_lcm pose_t, submap_list_t, loop_closure_t and
-// health_t. `lcm` may be null (file:// replay with nowhere to publish): messages are then only
-// counted. With `health_to_stderr`, each health report is also logged as one line.
+// health_t, encoded by io/lcm_output_conversions.h. `lcm` may be null (file:// replay with
+// nowhere to publish): nothing is then encoded or sent, and published() stays 0. With
+// `health_to_stderr`, each health report is also logged as one line.
 class LcmPublisher : public Publisher {
  public:
   LcmPublisher(lcm::LCM* lcm, OutputChannels channels, bool health_to_stderr);
@@ -38,8 +40,8 @@ class LcmPublisher : public Publisher {
   int64_t failed() const { return failed_; }
 
  private:
-  template <typename Msg>
-  void Send(const std::string& channel, const Msg& msg);
+  // Publishes encoded bytes; lcm_ must not be null.
+  void Send(const std::string& channel, const std::vector<uint8_t>& bytes);
 
   lcm::LCM* const lcm_;
   const OutputChannels channels_;

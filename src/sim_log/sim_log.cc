@@ -1,18 +1,18 @@
-#include "sim_log.h"
+#include "fusemap/sim_log/sim_log.h"
 
 #include <algorithm>
-#include <thread>
+#include <cmath>
 #include <tuple>
 #include <vector>
 
 #include "fusemap/eval/trajectory.h"
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
+#include "fusemap/io/lcm_output_conversions.h"
 #include "fusemap/io/tum_trajectory.h"
-#include "fusemap_lcm/pose_t.hpp"
 
 namespace fusemap {
-namespace sim_tool {
+namespace sim_log {
 namespace {
 
 enum Channel { kGroundTruth = 0, kOdometry, kImu, kLidar, kRgbd, kNumChannels };
@@ -28,43 +28,40 @@ struct Event {
   }
 };
 
-fusemap_lcm::pose_t GroundTruthMessage(const sim::RobotState& s, int64_t utime) {
-  fusemap_lcm::pose_t msg;
-  msg.utime = utime;
+io::PoseMessage GroundTruthMessage(const sim::RobotState& s, double stamp_s) {
+  io::PoseMessage msg;
+  msg.stamp_s = stamp_s;
   const common::Rigid3d pose = common::Rigid3d::FromRigid2d(s.T_world_base);
   const double yaw = s.T_world_base.angle_rad();
-  for (int i = 0; i < 3; ++i) msg.pos[i] = pose.translation()[i];
-  msg.vel[0] = s.speed_mps * std::cos(yaw);  // World frame.
-  msg.vel[1] = s.speed_mps * std::sin(yaw);
-  msg.vel[2] = 0.0;
-  msg.orientation[0] = pose.rotation().w();
-  msg.orientation[1] = pose.rotation().x();
-  msg.orientation[2] = pose.rotation().y();
-  msg.orientation[3] = pose.rotation().z();
-  msg.rotation_rate[0] = msg.rotation_rate[1] = 0.0;
-  msg.rotation_rate[2] = s.yaw_rate_radps;
-  msg.accel[0] = s.forward_accel_mps2;  // Body frame, without gravity.
-  msg.accel[1] = s.speed_mps * s.yaw_rate_radps;
-  msg.accel[2] = 0.0;
+  msg.position_m = pose.translation();
+  msg.velocity_mps = Eigen::Vector3d(s.speed_mps * std::cos(yaw),  // World frame.
+                                     s.speed_mps * std::sin(yaw), 0.0);
+  msg.orientation = pose.rotation();
+  msg.rotation_rate_radps = Eigen::Vector3d(0.0, 0.0, s.yaw_rate_radps);
+  // Body frame, without gravity.
+  msg.acceleration_mps2 =
+      Eigen::Vector3d(s.forward_accel_mps2, s.speed_mps * s.yaw_rate_radps, 0.0);
   return msg;
 }
 
-// Renders and encodes RGB-D frames [first, first + out->size()) on `threads` threads.
-bool RenderBatch(const sim::Simulation& simulation, int first, int threads,
+// Renders and encodes RGB-D frames [first, first + out->size()) on `executor` (null: here).
+bool RenderBatch(const sim::Simulation& simulation, int first, common::Executor* executor,
                  const io::RgbdEncodeOptions& encoding, std::vector<std::vector<uint8_t>>* out,
                  std::string* error) {
   const int n = static_cast<int>(out->size());
   std::vector<std::string> errors(n);
-  auto work = [&](int offset) {
-    for (int i = offset; i < n; i += threads) {
-      const sensor::RgbdFrame frame = simulation.Rgbd(first + i);
-      io::EncodeRgbdFrame(frame, encoding, &(*out)[i], &errors[i]);
-    }
+  auto render = [&](int i) {
+    const sensor::RgbdFrame frame = simulation.Rgbd(first + i);
+    io::EncodeRgbdFrame(frame, encoding, &(*out)[i], &errors[i]);
   };
-  std::vector<std::thread> pool;
-  for (int t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& thread : pool) thread.join();
+  for (int i = 0; i < n; ++i) {
+    if (executor == nullptr) {
+      render(i);
+    } else {
+      executor->Schedule([&render, i] { render(i); });
+    }
+  }
+  if (executor != nullptr) executor->WaitIdle();
   for (const std::string& e : errors) {
     if (!e.empty()) {
       *error = "RGB-D encoding: " + e;
@@ -96,8 +93,7 @@ bool WriteSimulationLog(const sim::Simulation& simulation, const SimLogOptions& 
   sim::OdometrySimulator odometry = simulation.MakeOdometrySimulator();
   sim::ImuSimulator imu = simulation.MakeImuSimulator();
   eval::Trajectory groundtruth;
-  const int threads = std::max(1, options.threads);
-  const int batch_size = 4 * threads;
+  const int batch_size = std::max(1, options.render_batch);
   std::vector<std::vector<uint8_t>> rgbd_batch;
   int rgbd_first = 0;
   *summary = SimLogSummary();
@@ -111,9 +107,7 @@ bool WriteSimulationLog(const sim::Simulation& simulation, const SimLogOptions& 
     switch (event.channel) {
       case kGroundTruth: {
         const sim::RobotState state = simulation.Truth(t);
-        const fusemap_lcm::pose_t msg = GroundTruthMessage(state, event.utime);
-        bytes.resize(msg.getEncodedSize());
-        msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
+        bytes = io::EncodePose(GroundTruthMessage(state, stamp));
         groundtruth.push_back(eval::TimedPose3d{stamp, common::Rigid3d::FromRigid2d(state.T_world_base)});
         break;
       }
@@ -134,7 +128,7 @@ bool WriteSimulationLog(const sim::Simulation& simulation, const SimLogOptions& 
           rgbd_first = event.index;
           const int total = sim::Simulation::Count(rates[kRgbd], so.seconds);
           rgbd_batch.assign(std::min(batch_size, total - rgbd_first), {});
-          if (!RenderBatch(simulation, rgbd_first, threads, options.rgbd_encoding, &rgbd_batch, error)) {
+          if (!RenderBatch(simulation, rgbd_first, options.render_executor, options.rgbd_encoding, &rgbd_batch, error)) {
             return false;
           }
         }
@@ -163,5 +157,5 @@ bool WriteSimulationLog(const sim::Simulation& simulation, const SimLogOptions& 
   return true;
 }
 
-}  // namespace sim_tool
+}  // namespace sim_log
 }  // namespace fusemap

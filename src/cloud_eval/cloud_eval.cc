@@ -1,4 +1,4 @@
-#include "cloud_eval.h"
+#include "fusemap/cloud_eval/cloud_eval.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "fusemap/sim/surface_distance.h"
 
 namespace fusemap {
-namespace cloudeval_tool {
+namespace cloud_eval {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -80,5 +80,5 @@ std::string FormatCloudEvalLine(const CloudEvalResult& result) {
   return line;
 }
 
-}  // namespace cloudeval_tool
+}  // namespace cloud_eval
 }  // namespace fusemap

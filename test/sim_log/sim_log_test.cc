@@ -1,4 +1,4 @@
-#include "sim_log.h"
+#include "fusemap/sim_log/sim_log.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,14 +7,16 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <memory>
 
 #include "fusemap/io/lcm_conversions.h"
 #include "fusemap/io/lcm_log.h"
+#include "fusemap/io/lcm_output_conversions.h"
 #include "fusemap/io/rgbd_conversions.h"
 #include "fusemap/sim/world_loader.h"
 
 namespace fusemap {
-namespace sim_tool {
+namespace sim_log {
 namespace {
 
 std::unique_ptr<sim::Simulation> SmallSimulation(uint64_t seed) {
@@ -75,6 +77,13 @@ TEST(SimLogTest, LogRoundTripsWithCountsPerChannel) {
       ASSERT_TRUE(io::DecodeRgbdFrame(event.data.data(), static_cast<int>(event.data.size()), &frame, &error)) << error;
       EXPECT_EQ(frame.color_intrinsics.width, 160);
       EXPECT_EQ(io::StampToUtime(frame.stamp_s), event.utime);
+    } else if (event.channel == "GROUND_TRUTH") {
+      io::PoseMessage pose;
+      ASSERT_TRUE(io::DecodePose(event.data.data(), static_cast<int>(event.data.size()), &pose,
+                                 &error)) << error;
+      EXPECT_EQ(io::StampToUtime(pose.stamp_s), event.utime);
+      EXPECT_EQ(pose.position_m.z(), 0.0);
+      EXPECT_NEAR(pose.orientation.norm(), 1.0, 1e-12);
     }
   }
   EXPECT_EQ(counts, expected);
@@ -87,10 +96,13 @@ TEST(SimLogTest, SameSeedSameBytesRegardlessOfThreads) {
   SimLogSummary summary;
   std::string bytes[3];
   const uint64_t seeds[3] = {5, 5, 6};
+  common::ThreadPool pool(2);
   for (int i = 0; i < 3; ++i) {
     SimLogOptions options;
     options.log_path = TempPath("d" + std::to_string(i) + ".lcm");
-    options.threads = i + 1;
+    // Run 0 renders on this thread, runs 1 and 2 on two pool threads, 3 frames at a time.
+    options.render_executor = i == 0 ? nullptr : &pool;
+    options.render_batch = i == 0 ? 8 : 3;
     ASSERT_TRUE(WriteSimulationLog(*SmallSimulation(seeds[i]), options, &summary, &error)) << error;
     bytes[i] = ReadAll(options.log_path);
     std::remove(options.log_path.c_str());
@@ -101,5 +113,5 @@ TEST(SimLogTest, SameSeedSameBytesRegardlessOfThreads) {
 }
 
 }  // namespace
-}  // namespace sim_tool
+}  // namespace sim_log
 }  // namespace fusemap

@@ -1,5 +1,5 @@
-#ifndef FUSEMAP_TOOLS_CLOUDEVAL_LANDMARK_EVAL_H_
-#define FUSEMAP_TOOLS_CLOUDEVAL_LANDMARK_EVAL_H_
+#ifndef FUSEMAP_CLOUD_EVAL_LANDMARK_EVAL_H_
+#define FUSEMAP_CLOUD_EVAL_LANDMARK_EVAL_H_
 
 #include <Eigen/Core>
 #include <string>
@@ -9,7 +9,7 @@
 #include "fusemap/sim/world.h"
 
 namespace fusemap {
-namespace cloudeval_tool {
+namespace cloud_eval {
 
 // A landmark measurable in the map cloud: the axis of a pillar (circle fit of its side) or the
 // centre of a box's top face. Positions are horizontal (x, y): pillars have no height mark.
@@ -58,7 +58,7 @@ std::string FormatLandmarkSummary(const std::vector<LandmarkPairResult>& pairs);
 // "landmark_pair a=… b=… true_m=… measured_m=… rel_err=…"
 std::string FormatLandmarkPair(const LandmarkPairResult& pair);
 
-}  // namespace cloudeval_tool
+}  // namespace cloud_eval
 }  // namespace fusemap
 
-#endif  // FUSEMAP_TOOLS_CLOUDEVAL_LANDMARK_EVAL_H_
+#endif  // FUSEMAP_CLOUD_EVAL_LANDMARK_EVAL_H_

@@ -1,5 +1,5 @@
-#ifndef FUSEMAP_TOOLS_CLOUDEVAL_CLOUD_EVAL_H_
-#define FUSEMAP_TOOLS_CLOUDEVAL_CLOUD_EVAL_H_
+#ifndef FUSEMAP_CLOUD_EVAL_CLOUD_EVAL_H_
+#define FUSEMAP_CLOUD_EVAL_CLOUD_EVAL_H_
 
 #include <Eigen/Core>
 #include <cstdint>
@@ -9,7 +9,7 @@
 #include "fusemap/sim/world.h"
 
 namespace fusemap {
-namespace cloudeval_tool {
+namespace cloud_eval {
 
 // A map point lies either on static structure or on where a person walked. "Dynamic": closer
 // to the volume swept by a person than to any static surface, and farther than the tolerance
@@ -36,7 +36,7 @@ CloudEvalResult EvaluateCloud(const sim::World& world, const cloud::ColorCloud& 
 // "median_surface_dist_m=… dynamic_removed_frac=… static_kept_frac=…" (no newline).
 std::string FormatCloudEvalLine(const CloudEvalResult& result);
 
-}  // namespace cloudeval_tool
+}  // namespace cloud_eval
 }  // namespace fusemap
 
-#endif  // FUSEMAP_TOOLS_CLOUDEVAL_CLOUD_EVAL_H_
+#endif  // FUSEMAP_CLOUD_EVAL_CLOUD_EVAL_H_

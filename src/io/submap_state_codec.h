@@ -2,8 +2,8 @@
 #define FUSEMAP_IO_SUBMAP_STATE_CODEC_H_
 
 #include "fusemap/common/rigid_transform.h"
-#include "fusemap/io/byte_buffer.h"
 #include "fusemap/mapping/submap_2d.h"
+#include "byte_buffer.h"
 
 namespace fusemap {
 namespace io {

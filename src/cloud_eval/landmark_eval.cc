@@ -1,4 +1,4 @@
-#include "landmark_eval.h"
+#include "fusemap/cloud_eval/landmark_eval.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -7,7 +7,7 @@
 #include <limits>
 
 namespace fusemap {
-namespace cloudeval_tool {
+namespace cloud_eval {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
@@ -142,5 +142,5 @@ std::string FormatLandmarkPair(const LandmarkPairResult& pair) {
   return line;
 }
 
-}  // namespace cloudeval_tool
+}  // namespace cloud_eval
 }  // namespace fusemap

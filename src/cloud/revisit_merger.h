@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "fusemap/cloud/cloud_types.h"
-#include "fusemap/cloud/map_block_index.h"
 #include "fusemap/common/rigid_transform.h"
+#include "map_block_index.h"
 
 namespace fusemap {
 namespace cloud {

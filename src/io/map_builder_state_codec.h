@@ -1,8 +1,8 @@
 #ifndef FUSEMAP_IO_MAP_BUILDER_STATE_CODEC_H_
 #define FUSEMAP_IO_MAP_BUILDER_STATE_CODEC_H_
 
-#include "fusemap/io/byte_buffer.h"
 #include "fusemap/pose_graph/map_builder_state_2d.h"
+#include "byte_buffer.h"
 
 namespace fusemap {
 namespace io {

@@ -6,8 +6,8 @@
 #include <unordered_set>
 #include <vector>
 
-#include "fusemap/cloud/map_block_index.h"
-#include "fusemap/cloud/voxel_key.h"
+#include "map_block_index.h"
+#include "voxel_key.h"
 
 namespace octomap {
 class OcTree;

@@ -7,8 +7,8 @@
 #include <vector>
 
 #include "fusemap/cloud/cloud_types.h"
-#include "fusemap/cloud/voxel_key.h"
 #include "fusemap/common/rigid_transform.h"
+#include "voxel_key.h"
 
 namespace fusemap {
 namespace cloud {

@@ -7,7 +7,7 @@
 #include <unordered_set>
 #include <vector>
 
-#include "fusemap/cloud/voxel_key.h"
+#include "voxel_key.h"
 
 namespace fusemap {
 namespace cloud {
