@@ -59,7 +59,8 @@ bool IsValidOptions(const Options& options, std::string* error) {
   OptionChecker check;
   options.Check(&check);
   if (check.problems().empty()) return true;
-  if (error != nullptr) *error = check.problems().front().key + " " + check.problems().front().message;
+  const OptionChecker::Problem& first = check.problems().front();
+  if (error != nullptr) *error = first.key + " " + first.message;
   return false;
 }
 
