@@ -28,60 +28,31 @@ bool IsFinite(const ColorPoint& p) {
 
 }  // namespace
 
+void CloudBinderOptions::Check(common::OptionChecker* check) const {
+  check->Require(voxel_size_m >= 0.001 && voxel_size_m <= 1.0, "voxel_size_m",
+                 "must be in [0.001, 1]");
+  check->Require(carve_pixel_stride >= 1 && carve_pixel_stride <= 64, "carve_pixel_stride",
+                 "must be in [1, 64]");
+  check->Require(carve_window_cells >= 0 && carve_window_cells <= 8, "carve_window_cells",
+                 "must be in [0, 8]");
+  check->Require(carve_submap_window >= 0, "carve_submap_window", "must be >= 0");
+  check->Require(dynamic_no_return_carve_m >= 0.0, "dynamic_no_return_carve_m", "must be >= 0");
+  check->Require(dynamic_carves_per_hit > 0.0 && dynamic_carves_per_hit <= 100.0,
+                 "dynamic_carves_per_hit", "must be in (0, 100]");
+  check->Require(dynamic_ray_stride >= 1, "dynamic_ray_stride", "must be >= 1");
+  check->Require(dynamic_margin_voxels >= 0, "dynamic_margin_voxels", "must be >= 0");
+  check->Require(dynamic_margin_range_fraction >= 0.0 && dynamic_margin_range_fraction < 0.5,
+                 "dynamic_margin_range_fraction", "must be in [0, 0.5)");
+  check->Require(dynamic_max_ray_length_m > 0.0, "dynamic_max_ray_length_m", "must be > 0");
+  check->Require(regions_with_merge_index >= 1, "regions_with_merge_index", "must be >= 1");
+  check->Require(merge_min_hits_beyond_window >= 1, "merge_min_hits_beyond_window",
+                 "must be >= 1");
+  check->Require(index_block_voxels >= 1 && index_block_voxels <= 64, "index_block_voxels",
+                 "must be in [1, 64]");
+}
+
 bool CloudBinderOptions::IsValid(std::string* error) const {
-  if (!(voxel_size_m >= 0.001 && voxel_size_m <= 1.0)) {
-    *error = "voxel_size_m must be in [0.001, 1]";
-    return false;
-  }
-  if (carve_pixel_stride < 1 || carve_pixel_stride > 64) {
-    *error = "carve_pixel_stride must be in [1, 64]";
-    return false;
-  }
-  if (carve_window_cells < 0 || carve_window_cells > 8) {
-    *error = "carve_window_cells must be in [0, 8]";
-    return false;
-  }
-  if (carve_submap_window < 0) {
-    *error = "carve_submap_window must be >= 0";
-    return false;
-  }
-  if (!(dynamic_no_return_carve_m >= 0.0)) {
-    *error = "dynamic_no_return_carve_m must be >= 0";
-    return false;
-  }
-  if (!(dynamic_carves_per_hit > 0.0 && dynamic_carves_per_hit <= 100.0)) {
-    *error = "dynamic_carves_per_hit must be in (0, 100]";
-    return false;
-  }
-  if (dynamic_ray_stride < 1) {
-    *error = "dynamic_ray_stride must be >= 1";
-    return false;
-  }
-  if (dynamic_margin_voxels < 0) {
-    *error = "dynamic_margin_voxels must be >= 0";
-    return false;
-  }
-  if (!(dynamic_margin_range_fraction >= 0.0 && dynamic_margin_range_fraction < 0.5)) {
-    *error = "dynamic_margin_range_fraction must be in [0, 0.5)";
-    return false;
-  }
-  if (!(dynamic_max_ray_length_m > 0.0)) {
-    *error = "dynamic_max_ray_length_m must be > 0";
-    return false;
-  }
-  if (regions_with_merge_index < 1) {
-    *error = "regions_with_merge_index must be >= 1";
-    return false;
-  }
-  if (merge_min_hits_beyond_window < 1) {
-    *error = "merge_min_hits_beyond_window must be >= 1";
-    return false;
-  }
-  if (index_block_voxels < 1 || index_block_voxels > 64) {
-    *error = "index_block_voxels must be in [1, 64]";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader) {
@@ -102,8 +73,7 @@ CloudBinderOptions ParseCloudBinderOptions(common::ConfigReader& reader) {
   reader.Get("regions_with_merge_index", &options.regions_with_merge_index);
   reader.Get("merge_revisits", &options.merge_revisits);
   reader.Get("merge_min_hits_beyond_window", &options.merge_min_hits_beyond_window);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
+  reader.CheckOptions(options);
   return options;
 }
 

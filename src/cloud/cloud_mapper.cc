@@ -21,25 +21,21 @@ common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
 
 }  // namespace
 
+void CloudMapperOptions::Check(common::OptionChecker* check) const {
+  check->Require(min_frame_interval_s >= 0.0, "min_frame_interval_s", "must be >= 0");
+  check->Require(max_pending_frames >= 1, "max_pending_frames", "must be >= 1");
+  check->Require(T_base_camera_xyz_m.size() == 3, "T_base_camera_xyz_m", "needs 3 numbers");
+  check->Require(T_base_camera_rpy_deg.size() == 3, "T_base_camera_rpy_deg", "needs 3 numbers");
+  check->Require(octomap_resolution_m >= 0.005 && octomap_resolution_m <= 2.0,
+                 "octomap_resolution_m", "must be in [0.005, 2]");
+  check->Nested("frame", frame);
+  check->Nested("sync", sync);
+  check->Nested("binder", binder);
+  check->Nested("laser_free_space", laser_free_space);
+}
+
 bool CloudMapperOptions::IsValid(std::string* error) const {
-  if (!(min_frame_interval_s >= 0.0)) {
-    *error = "min_frame_interval_s must be >= 0";
-    return false;
-  }
-  if (max_pending_frames < 1) {
-    *error = "max_pending_frames must be >= 1";
-    return false;
-  }
-  if (T_base_camera_xyz_m.size() != 3 || T_base_camera_rpy_deg.size() != 3) {
-    *error = "T_base_camera_xyz_m and T_base_camera_rpy_deg need 3 numbers each";
-    return false;
-  }
-  if (!(octomap_resolution_m >= 0.005 && octomap_resolution_m <= 2.0)) {
-    *error = "octomap_resolution_m must be in [0.005, 2]";
-    return false;
-  }
-  return frame.IsValid(error) && sync.IsValid(error) && binder.IsValid(error) &&
-         laser_free_space.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
@@ -55,14 +51,7 @@ CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader) {
   options.sync = ParsePoseInterpolatorOptions(reader.Child("sync"));
   options.binder = ParseCloudBinderOptions(reader.Child("binder"));
   options.laser_free_space = ParseFreeColumnFilterOptions(reader.Child("laser_free_space"));
-  // The children report their own keys; only this level's checks are left.
-  CloudMapperOptions own = options;
-  own.frame = FrameCloudOptions();
-  own.sync = PoseInterpolatorOptions();
-  own.binder = CloudBinderOptions();
-  own.laser_free_space = FreeColumnFilterOptions();
-  std::string error;
-  if (!own.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
+  reader.CheckOptions(options);
   return options;
 }
 

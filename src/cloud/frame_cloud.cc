@@ -74,29 +74,19 @@ ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
   return cloud;
 }
 
-// The first violated constraint: the key it concerns and why.
-bool FirstProblem(const FrameCloudOptions& o, std::string* key, std::string* message) {
-  auto problem = [&](const char* k, const char* m) {
-    *key = k;
-    *message = m;
-    return true;
-  };
-  if (!(o.min_range_m >= 0.0)) return problem("min_range_m", "must be >= 0");
-  if (!(o.max_range_m > o.min_range_m)) return problem("max_range_m", "must be > min_range_m");
-  if (!(o.voxel_size_m >= 0.0)) return problem("voxel_size_m", "must be >= 0 (0 disables it)");
-  if (o.outlier_mean_k < 0) return problem("outlier_mean_k", "must be >= 0 (0 disables it)");
-  if (!(o.outlier_stddev_mul > 0.0)) return problem("outlier_stddev_mul", "must be > 0");
-  if (o.pixel_stride < 1) return problem("pixel_stride", "must be >= 1");
-  return false;
-}
-
 }  // namespace
 
+void FrameCloudOptions::Check(common::OptionChecker* check) const {
+  check->Require(min_range_m >= 0.0, "min_range_m", "must be >= 0");
+  check->Require(max_range_m > min_range_m, "max_range_m", "must be > min_range_m");
+  check->Require(voxel_size_m >= 0.0, "voxel_size_m", "must be >= 0 (0 disables it)");
+  check->Require(outlier_mean_k >= 0, "outlier_mean_k", "must be >= 0 (0 disables it)");
+  check->Require(outlier_stddev_mul > 0.0, "outlier_stddev_mul", "must be > 0");
+  check->Require(pixel_stride >= 1, "pixel_stride", "must be >= 1");
+}
+
 bool FrameCloudOptions::IsValid(std::string* error) const {
-  std::string key, message;
-  if (!FirstProblem(*this, &key, &message)) return true;
-  if (error != nullptr) *error = key + " " + message;
-  return false;
+  return common::IsValidOptions(*this, error);
 }
 
 FrameCloudOptions ParseFrameCloudOptions(common::ConfigReader& reader) {
@@ -107,8 +97,7 @@ FrameCloudOptions ParseFrameCloudOptions(common::ConfigReader& reader) {
   reader.Get("outlier_mean_k", &options.outlier_mean_k);
   reader.Get("outlier_stddev_mul", &options.outlier_stddev_mul);
   reader.Get("pixel_stride", &options.pixel_stride);
-  std::string key, message;
-  if (FirstProblem(options, &key, &message)) reader.AddError(key, message);
+  reader.CheckOptions(options);
   return options;
 }
 

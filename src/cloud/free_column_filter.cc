@@ -5,20 +5,14 @@
 namespace fusemap {
 namespace cloud {
 
+void FreeColumnFilterOptions::Check(common::OptionChecker* check) const {
+  check->Require(min_z_m < max_z_m, "min_z_m", "must be below max_z_m");
+  check->Require(max_hits >= 0, "max_hits", "must be >= 0");
+  check->Require(margin_m >= 0.0 && margin_m <= 2.0, "margin_m", "must be in [0, 2]");
+}
+
 bool FreeColumnFilterOptions::IsValid(std::string* error) const {
-  if (!(min_z_m < max_z_m)) {
-    *error = "min_z_m must be below max_z_m";
-    return false;
-  }
-  if (max_hits < 0) {
-    *error = "max_hits must be >= 0";
-    return false;
-  }
-  if (!(margin_m >= 0.0 && margin_m <= 2.0)) {
-    *error = "margin_m must be in [0, 2]";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 FreeColumnFilterOptions ParseFreeColumnFilterOptions(common::ConfigReader& reader) {
@@ -28,8 +22,7 @@ FreeColumnFilterOptions ParseFreeColumnFilterOptions(common::ConfigReader& reade
   reader.Get("max_z_m", &options.max_z_m);
   reader.Get("max_hits", &options.max_hits);
   reader.Get("margin_m", &options.margin_m);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError(error.substr(0, error.find(' ')), error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -8,27 +8,15 @@
 
 namespace fusemap {
 namespace cloud {
-namespace {
 
-bool FirstProblem(const PoseInterpolatorOptions& o, std::string* key, std::string* message) {
-  auto problem = [&](const char* k, const char* m) {
-    *key = k;
-    *message = m;
-    return true;
-  };
-  if (!(o.max_history_s > 0.0)) return problem("max_history_s", "must be > 0");
-  if (!(o.max_gap_s > 0.0)) return problem("max_gap_s", "must be > 0");
-  if (!(o.hold_s >= 0.0)) return problem("hold_s", "must be >= 0");
-  return false;
+void PoseInterpolatorOptions::Check(common::OptionChecker* check) const {
+  check->Require(max_history_s > 0.0, "max_history_s", "must be > 0");
+  check->Require(max_gap_s > 0.0, "max_gap_s", "must be > 0");
+  check->Require(hold_s >= 0.0, "hold_s", "must be >= 0");
 }
 
-}  // namespace
-
 bool PoseInterpolatorOptions::IsValid(std::string* error) const {
-  std::string key, message;
-  if (!FirstProblem(*this, &key, &message)) return true;
-  if (error != nullptr) *error = key + " " + message;
-  return false;
+  return common::IsValidOptions(*this, error);
 }
 
 PoseInterpolatorOptions ParsePoseInterpolatorOptions(common::ConfigReader& reader) {
@@ -36,8 +24,7 @@ PoseInterpolatorOptions ParsePoseInterpolatorOptions(common::ConfigReader& reade
   reader.Get("max_history_s", &options.max_history_s);
   reader.Get("max_gap_s", &options.max_gap_s);
   reader.Get("hold_s", &options.hold_s);
-  std::string key, message;
-  if (FirstProblem(options, &key, &message)) reader.AddError(key, message);
+  reader.CheckOptions(options);
   return options;
 }
 

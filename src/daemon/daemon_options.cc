@@ -3,28 +3,34 @@
 namespace fusemap {
 namespace daemon {
 
+void DaemonOptions::Check(common::OptionChecker* check) const {
+  check->Require(!submap_list_channel.empty(), "submap_list_channel", "must not be empty");
+  check->Require(!loop_closure_channel.empty(), "loop_closure_channel", "must not be empty");
+  check->Require(!health_channel.empty(), "health_channel", "must not be empty");
+  check->Require(!cloud_region_channel.empty(), "cloud_region_channel", "must not be empty");
+  check->Require(sensor_queue_size >= 1, "sensor_queue_size", "must be >= 1");
+  check->Require(rgbd_queue_size >= 1, "rgbd_queue_size", "must be >= 1");
+  check->Require(submap_list_rate_hz > 0.0, "submap_list_rate_hz", "must be > 0");
+  check->Require(health_rate_hz > 0.0, "health_rate_hz", "must be > 0");
+  check->Require(max_future_s > 0.0, "max_future_s", "must be > 0");
+  check->Require(max_nonfinite_range_fraction >= 0.0 && max_nonfinite_range_fraction <= 1.0,
+                 "max_nonfinite_range_fraction", "must be in [0, 1]");
+  check->Require(max_message_bytes >= 1024, "max_message_bytes", "must be >= 1024");
+  check->Require(max_image_pixels >= 1, "max_image_pixels", "must be >= 1");
+  check->Require(bad_message_log_interval_s >= 0.0, "bad_message_log_interval_s", "must be >= 0");
+  check->Require(checkpoint_period_s >= 0.0, "checkpoint_period_s", "must be >= 0");
+  check->Require(release_memory_period_s >= 0.0, "release_memory_period_s", "must be >= 0");
+  // The stamp filter's rules, under the names its fields have in daemon:.
+  common::OptionChecker stamps;
+  stamp_filter().Check(&stamps);
+  for (const auto& problem : stamps.problems()) {
+    check->Require(false, problem.key == "max_jump_s" ? "max_stamp_jump_s" : problem.key,
+                   problem.message);
+  }
+}
+
 bool DaemonOptions::IsValid(std::string* error) const {
-  auto fail = [error](const std::string& message) {
-    if (error != nullptr) *error = message;
-    return false;
-  };
-  if (submap_list_channel.empty() || loop_closure_channel.empty() ||
-      health_channel.empty() || cloud_region_channel.empty()) {
-    return fail("output channel names must not be empty");
-  }
-  if (sensor_queue_size < 1 || rgbd_queue_size < 1) return fail("queue sizes must be >= 1");
-  if (!(submap_list_rate_hz > 0.0) || !(health_rate_hz > 0.0)) return fail("rates must be > 0");
-  if (!(max_future_s > 0.0)) return fail("max_future_s must be > 0");
-  if (!(max_nonfinite_range_fraction >= 0.0 && max_nonfinite_range_fraction <= 1.0)) {
-    return fail("max_nonfinite_range_fraction must be in [0, 1]");
-  }
-  if (max_message_bytes < 1024) return fail("max_message_bytes must be >= 1024");
-  if (max_image_pixels < 1) return fail("max_image_pixels must be >= 1");
-  if (!(bad_message_log_interval_s >= 0.0)) return fail("bad_message_log_interval_s must be >= 0");
-  if (!(checkpoint_period_s >= 0.0)) return fail("checkpoint_period_s must be >= 0");
-  if (!stamp_filter().IsValid(error)) return false;
-  if (!(release_memory_period_s >= 0.0)) return fail("release_memory_period_s must be >= 0");
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 sensor::StampFilterOptions DaemonOptions::stamp_filter() const {
@@ -55,8 +61,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("max_stamp_jump_s", &options.max_stamp_jump_s);
   reader.Get("max_time_reset_s", &options.max_time_reset_s);
   reader.Get("release_memory_period_s", &options.release_memory_period_s);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("daemon", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -6,16 +6,15 @@
 namespace fusemap {
 namespace eval {
 
+void AteOptions::Check(common::OptionChecker* check) const {
+  check->Require(max_time_diff_s >= 0.0 && std::isfinite(max_time_diff_s), "max_time_diff_s",
+                 "must be finite and >= 0");
+  check->Require(interpolate_max_gap_s >= 0.0 && std::isfinite(interpolate_max_gap_s),
+                 "interpolate_max_gap_s", "must be finite and >= 0");
+}
+
 bool AteOptions::IsValid(std::string* error) const {
-  if (!(max_time_diff_s >= 0.0) || !std::isfinite(max_time_diff_s)) {
-    *error = "max_time_diff_s must be finite and >= 0";
-    return false;
-  }
-  if (!(interpolate_max_gap_s >= 0.0) || !std::isfinite(interpolate_max_gap_s)) {
-    *error = "interpolate_max_gap_s must be finite and >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 AteOptions ParseAteOptions(common::ConfigReader& reader) {
@@ -24,8 +23,7 @@ AteOptions ParseAteOptions(common::ConfigReader& reader) {
   reader.Get("align", &options.align);
   reader.Get("planar", &options.planar);
   reader.Get("interpolate_max_gap_s", &options.interpolate_max_gap_s);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("max_time_diff_s", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -17,16 +17,14 @@ double RotationAngleRad(const Eigen::Quaterniond& q) {
 
 }  // namespace
 
+void RpeOptions::Check(common::OptionChecker* check) const {
+  check->Require(delta > 0.0 && std::isfinite(delta), "delta", "must be finite and > 0");
+  check->Require(max_time_diff_s >= 0.0 && std::isfinite(max_time_diff_s), "max_time_diff_s",
+                 "must be finite and >= 0");
+}
+
 bool RpeOptions::IsValid(std::string* error) const {
-  if (!(delta > 0.0) || !std::isfinite(delta)) {
-    *error = "delta must be finite and > 0";
-    return false;
-  }
-  if (!(max_time_diff_s >= 0.0) || !std::isfinite(max_time_diff_s)) {
-    *error = "max_time_diff_s must be finite and >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 RpeOptions ParseRpeOptions(common::ConfigReader& reader) {
@@ -42,8 +40,7 @@ RpeOptions ParseRpeOptions(common::ConfigReader& reader) {
   } else {
     reader.AddError("delta_unit", "must be \"m\" or \"s\", got \"" + unit + "\"");
   }
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("delta", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -39,28 +39,17 @@ bool CreateFamily(const std::string& name, apriltag_family_t** family,
 
 }  // namespace
 
+void TagDetectorOptions::Check(common::OptionChecker* check) const {
+  check->Require(family == "tag36h11" || family == "tag25h9" || family == "tagStandard41h12",
+                 "family", "'" + family + "' is not tag36h11, tag25h9 or tagStandard41h12");
+  check->Require(quad_decimate >= 1.0, "quad_decimate", "must be >= 1");
+  check->Require(quad_sigma >= 0.0, "quad_sigma", "must be >= 0");
+  check->Require(nthreads >= 1, "nthreads", "must be >= 1");
+  check->Require(max_hamming >= 0 && max_hamming <= 3, "max_hamming", "must be in [0, 3]");
+}
+
 bool TagDetectorOptions::IsValid(std::string* error) const {
-  if (family != "tag36h11" && family != "tag25h9" && family != "tagStandard41h12") {
-    *error = "family '" + family + "' is not one of tag36h11, tag25h9, tagStandard41h12";
-    return false;
-  }
-  if (!(quad_decimate >= 1.0)) {
-    *error = "quad_decimate must be >= 1";
-    return false;
-  }
-  if (!(quad_sigma >= 0.0)) {
-    *error = "quad_sigma must be >= 0";
-    return false;
-  }
-  if (nthreads < 1) {
-    *error = "nthreads must be >= 1";
-    return false;
-  }
-  if (max_hamming < 0 || max_hamming > 3) {
-    *error = "max_hamming must be in [0, 3]";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 TagDetectorOptions ParseTagDetectorOptions(common::ConfigReader& reader) {
@@ -71,17 +60,7 @@ TagDetectorOptions ParseTagDetectorOptions(common::ConfigReader& reader) {
   reader.Get("refine_edges", &options.refine_edges);
   reader.Get("nthreads", &options.nthreads);
   reader.Get("max_hamming", &options.max_hamming);
-  if (options.family != "tag36h11" && options.family != "tag25h9" &&
-      options.family != "tagStandard41h12") {
-    reader.AddError("family",
-                    "'" + options.family + "' is not tag36h11, tag25h9 or tagStandard41h12");
-  }
-  if (!(options.quad_decimate >= 1.0)) reader.AddError("quad_decimate", "must be >= 1");
-  if (!(options.quad_sigma >= 0.0)) reader.AddError("quad_sigma", "must be >= 0");
-  if (options.nthreads < 1) reader.AddError("nthreads", "must be >= 1");
-  if (options.max_hamming < 0 || options.max_hamming > 3) {
-    reader.AddError("max_hamming", "must be in [0, 3]");
-  }
+  reader.CheckOptions(options);
   return options;
 }
 

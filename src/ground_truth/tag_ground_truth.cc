@@ -6,21 +6,15 @@
 namespace fusemap {
 namespace ground_truth {
 
+void TagGroundTruthOptions::Check(common::OptionChecker* check) const {
+  check->Nested("detector", detector);
+  check->Require(default_tag_size_m > 0.0, "default_tag_size_m", "must be > 0");
+  check->Require(max_reprojection_rms_px > 0.0, "max_reprojection_rms_px", "must be > 0");
+  check->Require(min_decision_margin >= 0.0, "min_decision_margin", "must be >= 0");
+}
+
 bool TagGroundTruthOptions::IsValid(std::string* error) const {
-  if (!detector.IsValid(error)) return false;
-  if (!(default_tag_size_m > 0.0)) {
-    *error = "default_tag_size_m must be positive";
-    return false;
-  }
-  if (!(max_reprojection_rms_px > 0.0)) {
-    *error = "max_reprojection_rms_px must be positive";
-    return false;
-  }
-  if (!(min_decision_margin >= 0.0)) {
-    *error = "min_decision_margin must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 TagGroundTruthOptions ParseTagGroundTruthOptions(common::ConfigReader& reader) {
@@ -47,11 +41,7 @@ TagGroundTruthOptions ParseTagGroundTruthOptions(common::ConfigReader& reader) {
       options.T_base_camera = common::Rigid3d(Eigen::Vector3d(t[0], t[1], t[2]), rotation);
     }
   }
-  if (!(options.default_tag_size_m > 0.0)) reader.AddError("default_tag_size_m", "must be > 0");
-  if (!(options.max_reprojection_rms_px > 0.0)) {
-    reader.AddError("max_reprojection_rms_px", "must be > 0");
-  }
-  if (!(options.min_decision_margin >= 0.0)) reader.AddError("min_decision_margin", "must be >= 0");
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -26,16 +26,14 @@ int FindLoopEnd(const std::vector<Eigen::Vector3d>& gt, double radius_m) {
 
 }  // namespace
 
+void ScoreOptions::Check(common::OptionChecker* check) const {
+  check->Require(max_time_diff_s >= 0.0, "max_time_diff_s", "must be >= 0");
+  check->Require(rpe_segment_m > 0.0, "rpe_segment_m", "must be > 0");
+  check->Require(loop_radius_m > 0.0, "loop_radius_m", "must be > 0");
+}
+
 bool ScoreOptions::IsValid(std::string* error) const {
-  if (!(max_time_diff_s >= 0.0)) {
-    *error = "max_time_diff_s must be >= 0";
-    return false;
-  }
-  if (!(rpe_segment_m > 0.0) || !(loop_radius_m > 0.0)) {
-    *error = "rpe_segment_m and loop_radius_m must be > 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 ScoreOptions ParseScoreOptions(common::ConfigReader& reader) {
@@ -43,9 +41,7 @@ ScoreOptions ParseScoreOptions(common::ConfigReader& reader) {
   reader.Get("max_time_diff_s", &options.max_time_diff_s);
   reader.Get("rpe_segment_m", &options.rpe_segment_m);
   reader.Get("loop_radius_m", &options.loop_radius_m);
-  if (!(options.max_time_diff_s >= 0.0)) reader.AddError("max_time_diff_s", "must be >= 0");
-  if (!(options.rpe_segment_m > 0.0)) reader.AddError("rpe_segment_m", "must be > 0");
-  if (!(options.loop_radius_m > 0.0)) reader.AddError("loop_radius_m", "must be > 0");
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -145,14 +145,14 @@ bool LowerLateFront(const std::deque<Pending>& pending, double last_output_s,
 
 }  // namespace
 
+void CarmenOptions::Check(common::OptionChecker* check) const {
+  check->Require(range_max_m >= 0.0, "range_max_m", "must be >= 0 (0 = automatic)");
+  check->Require(synthetic_period_s > 0.0, "synthetic_period_s", "must be > 0");
+  check->Require(reorder_window_s >= 0.0, "reorder_window_s", "must be >= 0");
+}
+
 bool CarmenOptions::IsValid(std::string* error) const {
-  std::string reason;
-  if (!(range_max_m >= 0.0)) reason = "range_max_m must be >= 0 (0 = automatic)";
-  if (!(synthetic_period_s > 0.0)) reason = "synthetic_period_s must be > 0";
-  if (!(reorder_window_s >= 0.0)) reason = "reorder_window_s must be >= 0";
-  if (reason.empty()) return true;
-  if (error != nullptr) *error = reason;
-  return false;
+  return common::IsValidOptions(*this, error);
 }
 
 CarmenOptions ParseCarmenOptions(common::ConfigReader& reader) {
@@ -162,8 +162,7 @@ CarmenOptions ParseCarmenOptions(common::ConfigReader& reader) {
   reader.Get("synthetic_period_s", &options.synthetic_period_s);
   reader.Get("reorder_window_s", &options.reorder_window_s);
   reader.Get("drop_gmapping_poses", &options.drop_gmapping_poses);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("carmen", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -52,13 +52,15 @@ bool CheckPlanarLidarLayout(const void* data, int size, std::string* error) {
 
 }  // namespace
 
+void LidarChannelConfig::Check(common::OptionChecker* check) const {
+  check->Require(std::isfinite(range_min_m) && range_min_m >= 0.f, "range_min_m",
+                 "must be >= 0");
+  check->Require(std::isfinite(range_max_m) && range_max_m > range_min_m, "range_max_m",
+                 "must be > range_min_m");
+}
+
 bool LidarChannelConfig::IsValid(std::string* error) const {
-  if (!(std::isfinite(range_min_m) && std::isfinite(range_max_m) && range_min_m >= 0.f &&
-        range_min_m < range_max_m)) {
-    if (error != nullptr) *error = "lidar channel needs 0 <= range_min_m < range_max_m";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 int64_t StampToUtime(double stamp_s) { return std::llround(stamp_s * 1e6); }

@@ -17,8 +17,7 @@ void ParseSlamConfig(common::ConfigReader& reader, SlamConfig* config) {
   lidar.Get("frame", &result.lidar.frame);
   lidar.Get("range_min_m", &result.lidar.range_min_m);
   lidar.Get("range_max_m", &result.lidar.range_max_m);
-  std::string lidar_error;
-  if (!result.lidar.IsValid(&lidar_error)) lidar.AddError("range_max_m", lidar_error);
+  lidar.CheckOptions(result.lidar);
   result.map_builder = pose_graph::ParseMapBuilderOptions2D(reader);
   result.cloud = cloud::ParseCloudMapperOptions(reader.Child("cloud"));
   *config = result;

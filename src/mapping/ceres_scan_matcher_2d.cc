@@ -60,20 +60,16 @@ ceres::CostFunction* CreateRotationDeltaCostFunctor2D(double weight, double targ
       new RotationDeltaCostFunctor2D(weight, target_angle_rad));
 }
 
+void CeresScanMatcherOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(occupied_space_weight > 0.0, "occupied_space_weight", "must be > 0");
+  check->Require(translation_weight >= 0.0, "translation_weight", "must be >= 0");
+  check->Require(rotation_weight >= 0.0, "rotation_weight", "must be >= 0");
+  check->Require(max_num_iterations >= 1, "max_num_iterations", "must be >= 1");
+  check->Require(num_threads >= 1, "num_threads", "must be >= 1");
+}
+
 bool CeresScanMatcherOptions2D::IsValid(std::string* error) const {
-  if (!(occupied_space_weight > 0.0)) {
-    *error = "occupied_space_weight must be > 0";
-    return false;
-  }
-  if (!(translation_weight >= 0.0 && rotation_weight >= 0.0)) {
-    *error = "translation_weight and rotation_weight must be >= 0";
-    return false;
-  }
-  if (max_num_iterations < 1 || num_threads < 1) {
-    *error = "max_num_iterations and num_threads must be >= 1";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 CeresScanMatcherOptions2D ParseCeresScanMatcherOptions2D(common::ConfigReader& reader) {
@@ -83,8 +79,7 @@ CeresScanMatcherOptions2D ParseCeresScanMatcherOptions2D(common::ConfigReader& r
   reader.Get("rotation_weight", &options.rotation_weight);
   reader.Get("max_num_iterations", &options.max_num_iterations);
   reader.Get("num_threads", &options.num_threads);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("ceres_scan_matcher", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -9,28 +9,20 @@
 namespace fusemap {
 namespace mapping {
 
+void FastCorrelativeScanMatcherOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(linear_search_window_m >= 0.0, "linear_search_window_m", "must be >= 0");
+  check->Require(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi,
+                 "angular_search_window_rad", "must be in [0, pi]");
+  check->Require(branch_and_bound_depth >= 1 && branch_and_bound_depth <= 15,
+                 "branch_and_bound_depth", "must be in [1, 15]");
+  check->Require(min_score >= 0.0 && min_score <= 1.0, "min_score", "must be in [0, 1]");
+  check->Require(translation_delta_cost_weight >= 0.0, "translation_delta_cost_weight",
+                 "must be >= 0");
+  check->Require(rotation_delta_cost_weight >= 0.0, "rotation_delta_cost_weight", "must be >= 0");
+}
+
 bool FastCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
-  if (!(linear_search_window_m >= 0.0)) {
-    *error = "linear_search_window_m must be >= 0";
-    return false;
-  }
-  if (!(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi)) {
-    *error = "angular_search_window_rad must be in [0, pi]";
-    return false;
-  }
-  if (branch_and_bound_depth < 1 || branch_and_bound_depth > 15) {
-    *error = "branch_and_bound_depth must be in [1, 15]";
-    return false;
-  }
-  if (!(min_score >= 0.0 && min_score <= 1.0)) {
-    *error = "min_score must be in [0, 1]";
-    return false;
-  }
-  if (!(translation_delta_cost_weight >= 0.0 && rotation_delta_cost_weight >= 0.0)) {
-    *error = "translation_delta_cost_weight and rotation_delta_cost_weight must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
@@ -42,8 +34,7 @@ FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
   reader.Get("min_score", &options.min_score);
   reader.Get("translation_delta_cost_weight", &options.translation_delta_cost_weight);
   reader.Get("rotation_delta_cost_weight", &options.rotation_delta_cost_weight);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("fast_correlative_scan_matcher", error);
+  reader.CheckOptions(options);
   return options;
 }
 

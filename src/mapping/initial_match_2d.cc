@@ -19,33 +19,25 @@ InitialMatchOptions2D::InitialMatchOptions2D() {
   fast_correlative_scan_matcher.min_score = 0.5;
 }
 
+void InitialMatchOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(matching_resolution_m >= 0.0, "matching_resolution_m", "must be >= 0");
+  check->Require(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability,
+                 "unknown_probability", "must be in [0.1, 0.9]");
+  check->Require(unknown_padding_m >= 0.0, "unknown_padding_m", "must be >= 0");
+  check->Require(min_score_gain >= 0.0 && min_score_gain <= 1.0, "min_score_gain",
+                 "must be in [0, 1]");
+  check->Require(near_linear_search_window_m >= 0.0, "near_linear_search_window_m",
+                 "must be >= 0");
+  check->Require(near_angular_search_window_rad >= 0.0 &&
+                     near_angular_search_window_rad <= common::kPi,
+                 "near_angular_search_window_rad", "must be in [0, pi]");
+  check->Require(refresh_every_n_insertions >= 1, "refresh_every_n_insertions", "must be >= 1");
+  // The matcher's keys sit in this stage's own mapping (see ParseInitialMatchOptions2D).
+  fast_correlative_scan_matcher.Check(check);
+}
+
 bool InitialMatchOptions2D::IsValid(std::string* error) const {
-  if (!(matching_resolution_m >= 0.0)) {
-    *error = "matching_resolution_m must be >= 0";
-    return false;
-  }
-  if (!(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability)) {
-    *error = "unknown_probability must be in [0.1, 0.9]";
-    return false;
-  }
-  if (!(unknown_padding_m >= 0.0)) {
-    *error = "unknown_padding_m must be >= 0";
-    return false;
-  }
-  if (!(min_score_gain >= 0.0 && min_score_gain <= 1.0)) {
-    *error = "min_score_gain must be in [0, 1]";
-    return false;
-  }
-  if (!(near_linear_search_window_m >= 0.0 && near_angular_search_window_rad >= 0.0 &&
-        near_angular_search_window_rad <= common::kPi)) {
-    *error = "near_linear_search_window_m must be >= 0, near_angular_search_window_rad in [0, pi]";
-    return false;
-  }
-  if (refresh_every_n_insertions < 1) {
-    *error = "refresh_every_n_insertions must be >= 1";
-    return false;
-  }
-  return fast_correlative_scan_matcher.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
@@ -67,8 +59,7 @@ InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
   reader.Get("min_score", &fast.min_score);
   reader.Get("translation_delta_cost_weight", &fast.translation_delta_cost_weight);
   reader.Get("rotation_delta_cost_weight", &fast.rotation_delta_cost_weight);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("refresh_every_n_insertions", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -14,24 +14,22 @@ LocalTrajectoryBuilderOptions2D::LocalTrajectoryBuilderOptions2D() {
   loop_closure_adaptive_voxel_filter.min_num_points = 100;
 }
 
+void LocalTrajectoryBuilderOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(voxel_filter_size_m > 0.f, "voxel_filter_size_m", "must be > 0");
+  check->Require(min_num_returns >= 1, "min_num_returns", "must be >= 1");
+  check->Require(pose_queue_duration_s > 0.0, "pose_queue_duration_s", "must be > 0");
+  check->Nested("range_gate", range_gate);
+  check->Nested("adaptive_voxel_filter", adaptive_voxel_filter);
+  check->Nested("loop_closure_adaptive_voxel_filter", loop_closure_adaptive_voxel_filter);
+  check->Nested("initial_branch_and_bound_match", initial_branch_and_bound_match);
+  check->Nested("real_time_correlative_scan_matcher", real_time_correlative_scan_matcher);
+  check->Nested("ceres_scan_matcher", ceres_scan_matcher);
+  check->Nested("motion_filter", motion_filter);
+  check->Nested("submaps", submaps);
+}
+
 bool LocalTrajectoryBuilderOptions2D::IsValid(std::string* error) const {
-  if (voxel_filter_size_m <= 0.f) {
-    *error = "voxel_filter_size_m must be > 0";
-    return false;
-  }
-  if (min_num_returns < 1) {
-    *error = "min_num_returns must be >= 1";
-    return false;
-  }
-  if (pose_queue_duration_s <= 0.0) {
-    *error = "pose_queue_duration_s must be > 0";
-    return false;
-  }
-  return range_gate.IsValid(error) && adaptive_voxel_filter.IsValid(error) &&
-         loop_closure_adaptive_voxel_filter.IsValid(error) &&
-         initial_branch_and_bound_match.IsValid(error) &&
-         real_time_correlative_scan_matcher.IsValid(error) && ceres_scan_matcher.IsValid(error) &&
-         motion_filter.IsValid(error) && submaps.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader) {
@@ -65,8 +63,7 @@ LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::Con
   reader.Get("use_odometry", &options.use_odometry);
   reader.Get("use_imu", &options.use_imu);
   reader.Get("pose_queue_duration_s", &options.pose_queue_duration_s);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("voxel_filter_size_m", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -5,12 +5,14 @@
 namespace fusemap {
 namespace mapping {
 
+void MotionFilterOptions::Check(common::OptionChecker* check) const {
+  check->Require(max_time_s >= 0, "max_time_s", "must be >= 0");
+  check->Require(max_distance_m >= 0, "max_distance_m", "must be >= 0");
+  check->Require(max_angle_rad >= 0, "max_angle_rad", "must be >= 0");
+}
+
 bool MotionFilterOptions::IsValid(std::string* error) const {
-  if (max_time_s < 0 || max_distance_m < 0 || max_angle_rad < 0) {
-    *error = "motion filter thresholds must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 MotionFilterOptions ParseMotionFilterOptions(common::ConfigReader& reader) {
@@ -18,8 +20,7 @@ MotionFilterOptions ParseMotionFilterOptions(common::ConfigReader& reader) {
   reader.Get("max_time_s", &options.max_time_s);
   reader.Get("max_distance_m", &options.max_distance_m);
   reader.Get("max_angle_rad", &options.max_angle_rad);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("max_time_s", error);
+  reader.CheckOptions(options);
   return options;
 }
 

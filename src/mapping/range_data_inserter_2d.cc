@@ -59,16 +59,15 @@ void CastRay(const Eigen::Vector2f& begin, const Eigen::Vector2f& end, bool incl
 
 }  // namespace
 
+void ProbabilityGridRangeDataInserterOptions::Check(common::OptionChecker* check) const {
+  check->Require(hit_probability > 0.5f && hit_probability <= kMaxProbability, "hit_probability",
+                 "must lie in (0.5, 0.9]");
+  check->Require(miss_probability >= kMinProbability && miss_probability < 0.5f,
+                 "miss_probability", "must lie in [0.1, 0.5)");
+}
+
 bool ProbabilityGridRangeDataInserterOptions::IsValid(std::string* error) const {
-  if (!(hit_probability > 0.5f && hit_probability <= kMaxProbability)) {
-    *error = "hit_probability must lie in (0.5, 0.9]";
-    return false;
-  }
-  if (!(miss_probability >= kMinProbability && miss_probability < 0.5f)) {
-    *error = "miss_probability must lie in [0.1, 0.5)";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 ProbabilityGridRangeDataInserterOptions ParseProbabilityGridRangeDataInserterOptions(
@@ -77,8 +76,7 @@ ProbabilityGridRangeDataInserterOptions ParseProbabilityGridRangeDataInserterOpt
   reader.Get("hit_probability", &options.hit_probability);
   reader.Get("miss_probability", &options.miss_probability);
   reader.Get("insert_free_space", &options.insert_free_space);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("hit_probability/miss_probability", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -10,20 +10,17 @@
 namespace fusemap {
 namespace mapping {
 
+void RealTimeCorrelativeScanMatcherOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(linear_search_window_m >= 0.0, "linear_search_window_m", "must be >= 0");
+  check->Require(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi,
+                 "angular_search_window_rad", "must be in [0, pi]");
+  check->Require(translation_delta_cost_weight >= 0.0, "translation_delta_cost_weight",
+                 "must be >= 0");
+  check->Require(rotation_delta_cost_weight >= 0.0, "rotation_delta_cost_weight", "must be >= 0");
+}
+
 bool RealTimeCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
-  if (!(linear_search_window_m >= 0.0)) {
-    *error = "linear_search_window_m must be >= 0";
-    return false;
-  }
-  if (!(angular_search_window_rad >= 0.0 && angular_search_window_rad <= common::kPi)) {
-    *error = "angular_search_window_rad must be in [0, pi]";
-    return false;
-  }
-  if (!(translation_delta_cost_weight >= 0.0 && rotation_delta_cost_weight >= 0.0)) {
-    *error = "translation_delta_cost_weight and rotation_delta_cost_weight must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptions2D(
@@ -33,8 +30,7 @@ RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptio
   reader.Get("angular_search_window_rad", &options.angular_search_window_rad);
   reader.Get("translation_delta_cost_weight", &options.translation_delta_cost_weight);
   reader.Get("rotation_delta_cost_weight", &options.rotation_delta_cost_weight);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("real_time_correlative_scan_matcher", error);
+  reader.CheckOptions(options);
   return options;
 }
 

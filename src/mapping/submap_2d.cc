@@ -26,18 +26,18 @@ constexpr double SubmapsOptions::kMinResolutionM;
 constexpr double SubmapsOptions::kMaxResolutionM;
 constexpr int SubmapsOptions::kMaxNumRangeData;
 
+void SubmapsOptions::Check(common::OptionChecker* check) const {
+  check->Require(num_range_data >= 1 && num_range_data <= kMaxNumRangeData, "num_range_data",
+                 "must lie in [1, " + std::to_string(kMaxNumRangeData) + "]");
+  char range[64];
+  std::snprintf(range, sizeof(range), "must lie in [%g, %g]", kMinResolutionM, kMaxResolutionM);
+  check->Require(resolution_m >= kMinResolutionM && resolution_m <= kMaxResolutionM,
+                 "resolution_m", range);
+  check->Nested("range_data_inserter", range_data_inserter);
+}
+
 bool SubmapsOptions::IsValid(std::string* error) const {
-  if (num_range_data < 1 || num_range_data > kMaxNumRangeData) {
-    *error = "num_range_data must lie in [1, " + std::to_string(kMaxNumRangeData) + "]";
-    return false;
-  }
-  if (!(resolution_m >= kMinResolutionM && resolution_m <= kMaxResolutionM)) {
-    char text[64];
-    std::snprintf(text, sizeof(text), "resolution_m must lie in [%g, %g]", kMinResolutionM, kMaxResolutionM);
-    *error = text;
-    return false;
-  }
-  return range_data_inserter.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader) {
@@ -46,13 +46,7 @@ SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader) {
   reader.Get("resolution_m", &options.resolution_m);
   options.range_data_inserter =
       ParseProbabilityGridRangeDataInserterOptions(reader.Child("range_data_inserter"));
-  // IsValid() checks the inserter too, which reported its own keys already.
-  SubmapsOptions own = options;
-  own.range_data_inserter = ProbabilityGridRangeDataInserterOptions();
-  std::string error;
-  if (!own.IsValid(&error)) {
-    reader.AddError(error.rfind("num_range_data", 0) == 0 ? "num_range_data" : "resolution_m", error);
-  }
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -12,20 +12,20 @@ ConstraintBuilderOptions2D::ConstraintBuilderOptions2D() {
   ceres_scan_matcher.max_num_iterations = 10;
 }
 
+void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(sampling_ratio >= 0.0 && sampling_ratio <= 1.0, "sampling_ratio",
+                 "must be in [0, 1]");
+  check->Require(max_constraint_distance_m > 0.0, "max_constraint_distance_m", "must be > 0");
+  check->Require(loop_closure_translation_weight > 0.0, "loop_closure_translation_weight",
+                 "must be > 0");
+  check->Require(loop_closure_rotation_weight > 0.0, "loop_closure_rotation_weight",
+                 "must be > 0");
+  check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
+  check->Nested("ceres_scan_matcher", ceres_scan_matcher);
+}
+
 bool ConstraintBuilderOptions2D::IsValid(std::string* error) const {
-  if (sampling_ratio < 0.0 || sampling_ratio > 1.0) {
-    *error = "sampling_ratio must be in [0, 1]";
-    return false;
-  }
-  if (max_constraint_distance_m <= 0.0) {
-    *error = "max_constraint_distance_m must be > 0";
-    return false;
-  }
-  if (loop_closure_translation_weight <= 0.0 || loop_closure_rotation_weight <= 0.0) {
-    *error = "loop closure weights must be > 0";
-    return false;
-  }
-  return fast_correlative_scan_matcher.IsValid(error) && ceres_scan_matcher.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader) {
@@ -40,8 +40,7 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
     options.ceres_scan_matcher =
         mapping::ParseCeresScanMatcherOptions2D(reader.Child("ceres_scan_matcher"));
   }
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("sampling_ratio", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -9,17 +9,16 @@
 namespace fusemap {
 namespace pose_graph {
 
+void LoopClosureVerificationOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(min_agreeing_closures >= 0, "min_agreeing_closures", "must be >= 0");
+  check->Require(max_node_gap >= 1, "max_node_gap", "must be >= 1");
+  check->Require(max_translation_error_m > 0.0, "max_translation_error_m", "must be > 0");
+  check->Require(max_rotation_error_rad > 0.0 && max_rotation_error_rad <= common::kPi,
+                 "max_rotation_error_rad", "must be in (0, pi]");
+}
+
 bool LoopClosureVerificationOptions2D::IsValid(std::string* error) const {
-  if (min_agreeing_closures < 0 || max_node_gap < 1) {
-    *error = "min_agreeing_closures must be >= 0 and max_node_gap >= 1";
-    return false;
-  }
-  if (!(max_translation_error_m > 0.0) || !(max_rotation_error_rad > 0.0) ||
-      max_rotation_error_rad > common::kPi) {
-    *error = "max_translation_error_m must be > 0 and max_rotation_error_rad in (0, pi]";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 LoopClosureVerificationOptions2D ParseLoopClosureVerificationOptions2D(
@@ -29,8 +28,7 @@ LoopClosureVerificationOptions2D ParseLoopClosureVerificationOptions2D(
   reader.Get("max_node_gap", &options.max_node_gap);
   reader.Get("max_translation_error_m", &options.max_translation_error_m);
   reader.Get("max_rotation_error_rad", &options.max_rotation_error_rad);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("min_agreeing_closures", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -75,28 +75,20 @@ bool OdometryCalibration::IsIdentity() const {
   return translation_scale == 1.0 && rotation_scale == 1.0 && heading_drift_rad_per_m == 0.0;
 }
 
+void OdometryCalibrationOptions::Check(common::OptionChecker* check) const {
+  check->Require(min_intervals >= 3, "min_intervals", "must be at least 3 (three parameters)");
+  check->Require(min_distance_m >= 0.0, "min_distance_m", "must not be negative");
+  check->Require(min_rotation_rad >= 0.0, "min_rotation_rad", "must not be negative");
+  check->Require(max_scale_deviation > 0.0 && max_scale_deviation < 1.0, "max_scale_deviation",
+                 "must be in (0, 1)");
+  check->Require(max_heading_drift_rad_per_m > 0.0, "max_heading_drift_rad_per_m",
+                 "must be positive");
+  check->Require(robust_iterations >= 1, "robust_iterations", "must be at least 1");
+  check->Require(huber_threshold_sigma > 0.0, "huber_threshold_sigma", "must be positive");
+}
+
 bool OdometryCalibrationOptions::IsValid(std::string* error) const {
-  if (min_intervals < 3) {
-    *error = "min_intervals must be at least 3 (three parameters)";
-    return false;
-  }
-  if (!(min_distance_m >= 0.0) || !(min_rotation_rad >= 0.0)) {
-    *error = "min_distance_m and min_rotation_rad must not be negative";
-    return false;
-  }
-  if (!(max_scale_deviation > 0.0 && max_scale_deviation < 1.0)) {
-    *error = "max_scale_deviation must be in (0, 1)";
-    return false;
-  }
-  if (!(max_heading_drift_rad_per_m > 0.0)) {
-    *error = "max_heading_drift_rad_per_m must be positive";
-    return false;
-  }
-  if (robust_iterations < 1 || !(huber_threshold_sigma > 0.0)) {
-    *error = "robust_iterations must be at least 1 and huber_threshold_sigma positive";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 common::Rigid2d CalibrateIncrement(const OdometryCalibration& calibration,

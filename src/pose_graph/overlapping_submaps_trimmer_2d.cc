@@ -27,20 +27,17 @@ std::uint64_t CellKey(const Eigen::Vector2d& point_m, double resolution_m) {
 
 }  // namespace
 
+void OverlappingSubmapsTrimmerOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(fresh_submaps_count >= 0 && fresh_submaps_count <= kMaxFreshSubmaps,
+                 "fresh_submaps_count",
+                 "must be in [0, " + std::to_string(kMaxFreshSubmaps) + "]");
+  check->Require(min_covered_area_m2 >= 0.0 && std::isfinite(min_covered_area_m2),
+                 "min_covered_area_m2", "must be >= 0");
+  check->Require(min_added_submaps_count >= 1, "min_added_submaps_count", "must be >= 1");
+}
+
 bool OverlappingSubmapsTrimmerOptions2D::IsValid(std::string* error) const {
-  if (fresh_submaps_count < 0 || fresh_submaps_count > kMaxFreshSubmaps) {
-    *error = "fresh_submaps_count must be in [0, " + std::to_string(kMaxFreshSubmaps) + "]";
-    return false;
-  }
-  if (!(min_covered_area_m2 >= 0.0) || !std::isfinite(min_covered_area_m2)) {
-    *error = "min_covered_area_m2 must be >= 0";
-    return false;
-  }
-  if (min_added_submaps_count < 1) {
-    *error = "min_added_submaps_count must be >= 1";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 OverlappingSubmapsTrimmerOptions2D ParseOverlappingSubmapsTrimmerOptions2D(
@@ -49,8 +46,7 @@ OverlappingSubmapsTrimmerOptions2D ParseOverlappingSubmapsTrimmerOptions2D(
   reader.Get("fresh_submaps_count", &options.fresh_submaps_count);
   reader.Get("min_covered_area_m2", &options.min_covered_area_m2);
   reader.Get("min_added_submaps_count", &options.min_added_submaps_count);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("fresh_submaps_count", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -21,18 +21,23 @@ PoseGraphOptions2D::PoseGraphOptions2D() {
   optimization.max_num_iterations = 10;
 }
 
+void PoseGraphOptions2D::Check(common::OptionChecker* check) const {
+  check->Require(optimize_every_n_nodes >= 0, "optimize_every_n_nodes", "must be >= 0");
+  check->Require(final_optimization_iterations >= 1, "final_optimization_iterations",
+                 "must be >= 1");
+  check->Require(matcher_translation_weight > 0, "matcher_translation_weight", "must be > 0");
+  check->Require(matcher_rotation_weight > 0, "matcher_rotation_weight", "must be > 0");
+  check->Require(local_slam_translation_weight >= 0, "local_slam_translation_weight",
+                 "must be >= 0");
+  check->Require(local_slam_rotation_weight >= 0, "local_slam_rotation_weight", "must be >= 0");
+  check->Nested("constraint_builder", constraint_builder);
+  check->Nested("optimization", optimization);
+  check->Nested("overlapping_submaps_trimmer", overlapping_submaps_trimmer);
+  check->Nested("loop_closure_verification", loop_closure_verification);
+}
+
 bool PoseGraphOptions2D::IsValid(std::string* error) const {
-  if (optimize_every_n_nodes < 0 || final_optimization_iterations < 1) {
-    *error = "optimize_every_n_nodes must be >= 0 and final_optimization_iterations >= 1";
-    return false;
-  }
-  if (matcher_translation_weight <= 0 || matcher_rotation_weight <= 0 ||
-      local_slam_translation_weight < 0 || local_slam_rotation_weight < 0) {
-    *error = "constraint weights must be positive";
-    return false;
-  }
-  return constraint_builder.IsValid(error) && optimization.IsValid(error) &&
-         overlapping_submaps_trimmer.IsValid(error) && loop_closure_verification.IsValid(error);
+  return common::IsValidOptions(*this, error);
 }
 
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
@@ -55,8 +60,7 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
     options.loop_closure_verification =
         ParseLoopClosureVerificationOptions2D(reader.Child("loop_closure_verification"));
   }
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("optimize_every_n_nodes", error);
+  reader.CheckOptions(options);
   return options;
 }
 

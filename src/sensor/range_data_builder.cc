@@ -6,20 +6,14 @@
 namespace fusemap {
 namespace sensor {
 
+void RangeGateOptions::Check(common::OptionChecker* check) const {
+  check->Require(min_range_m >= 0.f, "min_range_m", "must be >= 0");
+  check->Require(max_range_m > min_range_m, "max_range_m", "must exceed min_range_m");
+  check->Require(missing_data_ray_length_m > 0.f, "missing_data_ray_length_m", "must be > 0");
+}
+
 bool RangeGateOptions::IsValid(std::string* error) const {
-  if (!(min_range_m >= 0.f)) {
-    *error = "min_range_m must be >= 0";
-    return false;
-  }
-  if (!(max_range_m > min_range_m)) {
-    *error = "max_range_m must exceed min_range_m";
-    return false;
-  }
-  if (!(missing_data_ray_length_m > 0.f)) {
-    *error = "missing_data_ray_length_m must be > 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 RangeGateOptions ParseRangeGateOptions(common::ConfigReader& reader) {
@@ -28,8 +22,7 @@ RangeGateOptions ParseRangeGateOptions(common::ConfigReader& reader) {
   reader.Get("max_range_m", &options.max_range_m);
   reader.Get("insert_misses", &options.insert_misses);
   reader.Get("missing_data_ray_length_m", &options.missing_data_ray_length_m);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("min_range_m/max_range_m", error);
+  reader.CheckOptions(options);
   return options;
 }
 

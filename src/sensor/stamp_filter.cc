@@ -18,22 +18,19 @@ std::string Format(const char* format, double a, double b, double c = 0.0) {
 
 }  // namespace
 
+void StampFilterOptions::Check(common::OptionChecker* check) const {
+  check->Require(std::isfinite(min_stamp_s), "min_stamp_s", "must be finite");
+  check->Require(std::isfinite(max_stamp_s) && max_stamp_s > min_stamp_s, "max_stamp_s",
+                 "must be finite and > min_stamp_s");
+  check->Require(max_jump_s > 0.0 && std::isfinite(max_jump_s), "max_jump_s", "must be > 0");
+  check->Require(time_reset_threshold_s >= 0.0 && std::isfinite(time_reset_threshold_s),
+                 "time_reset_threshold_s", "must be >= 0");
+  check->Require(max_time_reset_s >= time_reset_threshold_s && std::isfinite(max_time_reset_s),
+                 "max_time_reset_s", "must be >= time_reset_threshold_s");
+}
+
 bool StampFilterOptions::IsValid(std::string* error) const {
-  const auto fail = [error](const char* why) {
-    if (error != nullptr) *error = why;
-    return false;
-  };
-  if (!(std::isfinite(min_stamp_s) && std::isfinite(max_stamp_s) && min_stamp_s < max_stamp_s)) {
-    return fail("stamp bounds must be finite with min_stamp_s < max_stamp_s");
-  }
-  if (!(max_jump_s > 0.0 && std::isfinite(max_jump_s))) return fail("max_stamp_jump_s must be > 0");
-  if (!(time_reset_threshold_s >= 0.0 && std::isfinite(time_reset_threshold_s))) {
-    return fail("time_reset_threshold_s must be >= 0");
-  }
-  if (!(max_time_reset_s >= time_reset_threshold_s && std::isfinite(max_time_reset_s))) {
-    return fail("max_time_reset_s must be >= time_reset_threshold_s");
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 StampFilter::StampFilter(const StampFilterOptions& options, int num_channels,

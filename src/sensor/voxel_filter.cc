@@ -37,20 +37,14 @@ RangeData VoxelFilter(const RangeData& range_data, float edge_length_m) {
   return result;
 }
 
+void AdaptiveVoxelFilterOptions::Check(common::OptionChecker* check) const {
+  check->Require(max_length_m > 0.f, "max_length_m", "must be > 0");
+  check->Require(min_num_points >= 1, "min_num_points", "must be >= 1");
+  check->Require(max_range_m > 0.f, "max_range_m", "must be > 0");
+}
+
 bool AdaptiveVoxelFilterOptions::IsValid(std::string* error) const {
-  if (!(max_length_m > 0.f)) {
-    *error = "max_length_m must be > 0";
-    return false;
-  }
-  if (min_num_points < 1) {
-    *error = "min_num_points must be >= 1";
-    return false;
-  }
-  if (!(max_range_m > 0.f)) {
-    *error = "max_range_m must be > 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 AdaptiveVoxelFilterOptions ParseAdaptiveVoxelFilterOptions(common::ConfigReader& reader) {
@@ -58,8 +52,7 @@ AdaptiveVoxelFilterOptions ParseAdaptiveVoxelFilterOptions(common::ConfigReader&
   reader.Get("max_length_m", &options.max_length_m);
   reader.Get("min_num_points", &options.min_num_points);
   reader.Get("max_range_m", &options.max_range_m);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("max_length_m/min_num_points/max_range_m", error);
+  reader.CheckOptions(options);
   return options;
 }
 

@@ -7,24 +7,17 @@
 
 namespace fusemap {
 namespace sim {
-namespace {
-
-bool Fail(const char* message, std::string* error) {
-  *error = message;
-  return false;
+void LaserOptions::Check(common::OptionChecker* check) const {
+  check->Require(rate_hz > 0.0 && rate_hz <= 1000.0, "rate_hz", "must be in (0, 1000]");
+  check->Require(fov_deg > 0.0 && fov_deg <= 360.0, "fov_deg", "must be in (0, 360]");
+  check->Require(num_beams >= 2, "num_beams", "must be >= 2");
+  check->Require(range_min_m >= 0.0, "range_min_m", "must be >= 0");
+  check->Require(range_max_m > range_min_m, "range_max_m", "must be > range_min_m");
+  check->Require(range_noise_stddev_m >= 0.0, "range_noise_stddev_m", "must be >= 0");
 }
 
-}  // namespace
-
 bool LaserOptions::IsValid(std::string* error) const {
-  if (!(rate_hz > 0.0 && rate_hz <= 1000.0)) return Fail("laser rate_hz must be in (0, 1000]", error);
-  if (!(fov_deg > 0.0 && fov_deg <= 360.0)) return Fail("laser fov_deg must be in (0, 360]", error);
-  if (num_beams < 2) return Fail("laser num_beams must be >= 2", error);
-  if (!(range_min_m >= 0.0 && range_max_m > range_min_m)) {
-    return Fail("laser needs 0 <= range_min_m < range_max_m", error);
-  }
-  if (!(range_noise_stddev_m >= 0.0)) return Fail("laser range_noise_stddev_m must be >= 0", error);
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 LaserOptions ParseLaserOptions(common::ConfigReader& reader) {
@@ -36,8 +29,7 @@ LaserOptions ParseLaserOptions(common::ConfigReader& reader) {
   reader.Get("range_max_m", &options.range_max_m);
   reader.Get("range_noise_stddev_m", &options.range_noise_stddev_m);
   reader.Get("mount_height_m", &options.mount_height_m);
-  std::string error;
-  if (!options.IsValid(&error)) reader.AddError("laser", error);
+  reader.CheckOptions(options);
   return options;
 }
 

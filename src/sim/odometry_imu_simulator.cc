@@ -14,31 +14,33 @@ double Draw(std::mt19937_64* rng, double stddev) {
 
 }  // namespace
 
+void OdometryOptions::Check(common::OptionChecker* check) const {
+  check->Require(rate_hz > 0.0, "rate_hz", "must be > 0");
+  check->Require(speed_scale_error_stddev >= 0.0, "speed_scale_error_stddev", "must be >= 0");
+  check->Require(speed_noise_stddev_mps >= 0.0, "speed_noise_stddev_mps", "must be >= 0");
+  check->Require(yaw_rate_bias_stddev_radps >= 0.0, "yaw_rate_bias_stddev_radps", "must be >= 0");
+  check->Require(yaw_rate_noise_stddev_radps >= 0.0, "yaw_rate_noise_stddev_radps",
+                 "must be >= 0");
+}
+
 bool OdometryOptions::IsValid(std::string* error) const {
-  if (!(rate_hz > 0.0)) {
-    *error = "odometry rate_hz must be > 0";
-    return false;
-  }
-  if (speed_scale_error_stddev < 0.0 || speed_noise_stddev_mps < 0.0 ||
-      yaw_rate_bias_stddev_radps < 0.0 || yaw_rate_noise_stddev_radps < 0.0) {
-    *error = "odometry noise parameters must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
+}
+
+void ImuOptions::Check(common::OptionChecker* check) const {
+  check->Require(rate_hz > 0.0, "rate_hz", "must be > 0");
+  check->Require(accel_noise_stddev_mps2 >= 0.0, "accel_noise_stddev_mps2", "must be >= 0");
+  check->Require(gyro_noise_stddev_radps >= 0.0, "gyro_noise_stddev_radps", "must be >= 0");
+  check->Require(accel_bias_stddev_mps2 >= 0.0, "accel_bias_stddev_mps2", "must be >= 0");
+  check->Require(gyro_bias_stddev_radps >= 0.0, "gyro_bias_stddev_radps", "must be >= 0");
+  check->Require(accel_bias_walk_mps2_per_sqrt_s >= 0.0, "accel_bias_walk_mps2_per_sqrt_s",
+                 "must be >= 0");
+  check->Require(gyro_bias_walk_radps_per_sqrt_s >= 0.0, "gyro_bias_walk_radps_per_sqrt_s",
+                 "must be >= 0");
 }
 
 bool ImuOptions::IsValid(std::string* error) const {
-  if (!(rate_hz > 0.0)) {
-    *error = "imu rate_hz must be > 0";
-    return false;
-  }
-  if (accel_noise_stddev_mps2 < 0.0 || gyro_noise_stddev_radps < 0.0 ||
-      accel_bias_stddev_mps2 < 0.0 || gyro_bias_stddev_radps < 0.0 ||
-      accel_bias_walk_mps2_per_sqrt_s < 0.0 || gyro_bias_walk_radps_per_sqrt_s < 0.0) {
-    *error = "imu noise parameters must be >= 0";
-    return false;
-  }
-  return true;
+  return common::IsValidOptions(*this, error);
 }
 
 OdometrySimulator::OdometrySimulator(const OdometryOptions& options, uint64_t seed)

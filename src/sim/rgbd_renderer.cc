@@ -247,16 +247,23 @@ void RenderView(const World& world, const std::vector<Prism>& prisms, const Floo
   }
 }
 
+void RgbdCameraOptions::Check(common::OptionChecker* check) const {
+  check->Require(rate_hz > 0.0, "rate_hz", "must be > 0");
+  check->Require(width >= 8 && width <= 4096, "width", "must be in [8, 4096]");
+  check->Require(height >= 8 && height <= 4096, "height", "must be in [8, 4096]");
+  check->Require(fx > 0.0, "fx", "must be > 0");
+  check->Require(fy > 0.0, "fy", "must be > 0");
+  check->Require(mount_z_m > 0.0, "mount_z_m", "must be > 0 (camera above the floor)");
+  check->Require(pitch_down_deg > -80.0 && pitch_down_deg < 80.0, "pitch_down_deg",
+                 "must be in (-80, 80)");
+  check->Require(depth_min_m > 0.0, "depth_min_m", "must be > 0");
+  check->Require(depth_max_m > depth_min_m && depth_max_m < 65.0, "depth_max_m",
+                 "must be > depth_min_m and < 65");
+  check->Require(depth_noise_k_per_m >= 0.0, "depth_noise_k_per_m", "must be >= 0");
+}
+
 bool RgbdCameraOptions::IsValid(std::string* error) const {
-  if (!(rate_hz > 0.0)) *error = "rgbd rate_hz must be > 0";
-  else if (width < 8 || height < 8 || width > 4096 || height > 4096) *error = "rgbd width/height must be in [8, 4096]";
-  else if (!(fx > 0.0 && fy > 0.0)) *error = "rgbd fx, fy must be > 0";
-  else if (!(mount_z_m > 0.0)) *error = "rgbd mount_z_m must be > 0 (camera above the floor)";
-  else if (!(pitch_down_deg > -80.0 && pitch_down_deg < 80.0)) *error = "rgbd pitch_down_deg must be in (-80, 80)";
-  else if (!(depth_min_m > 0.0 && depth_max_m > depth_min_m && depth_max_m < 65.0)) *error = "rgbd needs 0 < depth_min_m < depth_max_m < 65";
-  else if (!(depth_noise_k_per_m >= 0.0)) *error = "rgbd depth_noise_k_per_m must be >= 0";
-  else return true;
-  return false;
+  return common::IsValidOptions(*this, error);
 }
 
 RgbdCameraOptions ParseRgbdCameraOptions(common::ConfigReader& reader) {
@@ -276,8 +283,7 @@ RgbdCameraOptions ParseRgbdCameraOptions(common::ConfigReader& reader) {
   reader.Get("depth_min_m", &o.depth_min_m);
   reader.Get("depth_max_m", &o.depth_max_m);
   reader.Get("depth_noise_k_per_m", &o.depth_noise_k_per_m);
-  std::string error;
-  if (!o.IsValid(&error)) reader.AddError("rgbd", error);
+  reader.CheckOptions(o);
   return o;
 }
 

@@ -7,17 +7,18 @@
 namespace fusemap {
 namespace sim {
 
+void SimulationOptions::Check(common::OptionChecker* check) const {
+  check->Require(seconds > 0.0 && seconds <= 24 * 3600.0, "seconds", "must be in (0, 86400]");
+  check->Require(ground_truth_rate_hz > 0.0 && ground_truth_rate_hz <= 10000.0,
+                 "ground_truth_rate_hz", "must be in (0, 10000]");
+  check->Nested("laser", laser);
+  check->Nested("odometry", odometry);
+  check->Nested("imu", imu);
+  if (rgbd_enabled) check->Nested("rgbd", rgbd);
+}
+
 bool SimulationOptions::IsValid(std::string* error) const {
-  if (!(seconds > 0.0 && seconds <= 24 * 3600.0)) {
-    *error = "seconds must be in (0, 86400]";
-    return false;
-  }
-  if (!(ground_truth_rate_hz > 0.0 && ground_truth_rate_hz <= 10000.0)) {
-    *error = "ground_truth_rate_hz must be in (0, 10000]";
-    return false;
-  }
-  return laser.IsValid(error) && odometry.IsValid(error) && imu.IsValid(error) &&
-         (!rgbd_enabled || rgbd.IsValid(error));
+  return common::IsValidOptions(*this, error);
 }
 
 SimulationOptions ParseSimulationOptions(common::ConfigReader& reader) {
@@ -31,11 +32,14 @@ SimulationOptions ParseSimulationOptions(common::ConfigReader& reader) {
   reader.Get("ground_truth_rate_hz", &o.ground_truth_rate_hz);
   reader.Get("rgbd_enabled", &o.rgbd_enabled);
   o.laser = ParseLaserOptions(reader.Child("laser"));
-  reader.Child("odometry").Get("rate_hz", &o.odometry.rate_hz);
-  reader.Child("imu").Get("rate_hz", &o.imu.rate_hz);
+  common::ConfigReader& odometry = reader.Child("odometry");
+  odometry.Get("rate_hz", &o.odometry.rate_hz);
+  odometry.CheckOptions(o.odometry);
+  common::ConfigReader& imu = reader.Child("imu");
+  imu.Get("rate_hz", &o.imu.rate_hz);
+  imu.CheckOptions(o.imu);
   o.rgbd = ParseRgbdCameraOptions(reader.Child("rgbd"));
-  std::string error;
-  if (!o.IsValid(&error)) reader.AddError("simulation", error);
+  reader.CheckOptions(o);
   return o;
 }
 

@@ -173,6 +173,13 @@ TEST(AteTest, ParseOptions) {
   EXPECT_TRUE(reader->Finish(&error)) << error;
   EXPECT_DOUBLE_EQ(options.max_time_diff_s, 0.1);
   EXPECT_FALSE(options.align);
+
+  auto bad = common::ConfigReader::FromString("align: true\ninterpolate_max_gap_s: -1\n", "test",
+                                              &error);
+  ASSERT_NE(bad, nullptr) << error;
+  ParseAteOptions(*bad);
+  EXPECT_FALSE(bad->Finish(&error));
+  EXPECT_EQ(error, "test:2: key 'interpolate_max_gap_s': must be finite and >= 0");
 }
 
 }  // namespace

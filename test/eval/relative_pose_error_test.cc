@@ -90,6 +90,12 @@ TEST(RpeTest, ParseOptionsAndBadUnit) {
   ParseRpeOptions(*bad);
   EXPECT_FALSE(bad->Finish(&error));
   EXPECT_NE(error.find("delta_unit"), std::string::npos);
+
+  auto negative = common::ConfigReader::FromString("delta_unit: m\ndelta: -1\n", "test", &error);
+  ASSERT_NE(negative, nullptr) << error;
+  ParseRpeOptions(*negative);
+  EXPECT_FALSE(negative->Finish(&error));
+  EXPECT_EQ(error, "test:2: key 'delta': must be finite and > 0");
 }
 
 }  // namespace

@@ -82,6 +82,23 @@ TEST(TagGroundTruthTest, ParsesExtrinsicOverride) {
   EXPECT_NE(error.find("rotation_wxyz"), std::string::npos) << error;
 }
 
+// Issue 16: the tool's config (config/tagscore.yaml's ground_truth:) names each bad key path.
+TEST(TagGroundTruthTest, BadValuesNameTheirKeyPathAndLine) {
+  std::string error;
+  auto reader = common::ConfigReader::FromString(
+      "detector:\n  nthreads: 0\nmin_decision_margin: -1\n", "gt.yaml", &error);
+  ASSERT_NE(reader, nullptr) << error;
+  ParseTagGroundTruthOptions(*reader);
+  EXPECT_FALSE(reader->Finish(&error));
+  EXPECT_EQ(error,
+            "gt.yaml:2: key 'detector.nthreads': must be >= 1\n"
+            "gt.yaml:3: key 'min_decision_margin': must be >= 0");
+  TagGroundTruthOptions options;
+  options.detector.family = "tag99h1";
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_EQ(error.rfind("detector.family '", 0), 0u) << error;
+}
+
 }  // namespace
 }  // namespace ground_truth
 }  // namespace fusemap

@@ -124,6 +124,17 @@ TEST(TrajectoryScoreTest, DisjointTimesAreAnError) {
   EXPECT_NE(error.find("no estimated pose"), std::string::npos) << error;
 }
 
+// Issue 16: config/tagscore.yaml's score: keys are reported by name and line.
+TEST(TrajectoryScoreTest, BadOptionNamesItsKeyAndLine) {
+  std::string error;
+  auto reader = common::ConfigReader::FromString("max_time_diff_s: 0.1\nloop_radius_m: 0\n",
+                                                 "score.yaml", &error);
+  ASSERT_NE(reader, nullptr) << error;
+  ParseScoreOptions(*reader);
+  EXPECT_FALSE(reader->Finish(&error));
+  EXPECT_EQ(error, "score.yaml:2: key 'loop_radius_m': must be > 0");
+}
+
 }  // namespace
 }  // namespace ground_truth
 }  // namespace fusemap

@@ -67,7 +67,36 @@ TEST(SimulationOptionsTest, ParsesKeysAndRejectsOutOfRange) {
   ASSERT_TRUE(bad) << error;
   ParseSimulationOptions(*bad);
   EXPECT_FALSE(bad->Finish(&error));
-  EXPECT_NE(error.find("range_min_m < range_max_m"), std::string::npos) << error;
+  EXPECT_EQ(error, "bad:1: key 'laser.range_max_m': must be > range_min_m");
+}
+
+// Issue 16: each bad value is reported once, against its own key path and line.
+TEST(SimulationOptionsTest, EachBadValueNamesItsKeyPathAndLine) {
+  const struct {
+    const char* yaml;
+    const char* error;
+  } cases[] = {
+      {"seed: 1\nseconds: 0\n", "opts:2: key 'seconds': must be in (0, 86400]"},
+      {"ground_truth_rate_hz: -1\n", "opts:1: key 'ground_truth_rate_hz': must be in (0, 10000]"},
+      {"laser:\n  num_beams: 1\n", "opts:2: key 'laser.num_beams': must be >= 2"},
+      {"odometry:\n  rate_hz: 0\n", "opts:2: key 'odometry.rate_hz': must be > 0"},
+      {"imu:\n  rate_hz: 0\n", "opts:2: key 'imu.rate_hz': must be > 0"},
+      {"rgbd:\n  rate_hz: 25\n  height: 4\n", "opts:3: key 'rgbd.height': must be in [8, 4096]"},
+  };
+  for (const auto& c : cases) {
+    std::string error;
+    auto reader = common::ConfigReader::FromString(c.yaml, "opts", &error);
+    ASSERT_TRUE(reader) << error;
+    ParseSimulationOptions(*reader);
+    EXPECT_FALSE(reader->Finish(&error)) << c.yaml;
+    EXPECT_EQ(error, c.error) << c.yaml;
+  }
+  SimulationOptions options;
+  options.rgbd_enabled = true;
+  options.rgbd.fx = 0.0;
+  std::string error;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_EQ(error, "rgbd.fx must be > 0");
 }
 
 TEST(TrajectoryTest, SmoothLoopWithinLimits) {

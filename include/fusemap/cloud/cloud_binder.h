@@ -59,6 +59,9 @@ struct CloudBinderOptions {
   // voxel (a person's) could never be outweighed by the current lap's free-space evidence.
   int merge_min_hits_beyond_window = 2;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -37,6 +37,9 @@ struct CloudMapperOptions {
   // Applied to the map when it is written out, against the laser map (see the header).
   FreeColumnFilterOptions laser_free_space;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -23,6 +23,9 @@ struct FrameCloudOptions {
   double outlier_stddev_mul = 2.0;
   int pixel_stride = 1;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

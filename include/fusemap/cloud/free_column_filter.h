@@ -25,6 +25,9 @@ struct FreeColumnFilterOptions {
   int max_hits = 2;       // frames that saw the voxel
   double margin_m = 0.10;  // the column and this much around it must be free in the laser map
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -19,6 +19,9 @@ struct PoseInterpolatorOptions {
   double max_gap_s = 0.5;
   double hold_s = 0.5;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

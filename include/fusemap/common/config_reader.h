@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "fusemap/common/option_checker.h"
+
 namespace fusemap {
 namespace common {
 
@@ -42,6 +44,15 @@ class ConfigReader {
 
   // Records a semantic error (for example an out-of-range value) against `key`.
   void AddError(const std::string& key, const std::string& message);
+
+  // Records each problem options.Check() finds in the fields read from this mapping against its
+  // key (nested structs are left to their own parsers). Call at the end of a Parse function.
+  template <typename Options>
+  void CheckOptions(const Options& options) {
+    OptionChecker check(OptionChecker::Scope::kOwnFields);
+    options.Check(&check);
+    for (const auto& problem : check.problems()) AddError(problem.key, problem.message);
+  }
 
   // True if every key in the file was asked for and every value parsed; otherwise lists the
   // problems, one per line, each with file, line and key path.

@@ -48,6 +48,9 @@ struct DaemonOptions {
   // this the resident size creeps up over hours although the live heap is flat. 0 = never.
   double release_memory_period_s = 10.0;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
   sensor::StampFilterOptions stamp_filter() const;
 };

@@ -25,6 +25,9 @@ struct AteOptions {
   // estimate sampled elsewhere, like odometry against scan poses.
   double interpolate_max_gap_s = 0.0;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -17,6 +17,9 @@ struct RpeOptions {
   DeltaUnit delta_unit = DeltaUnit::kMetres;
   double max_time_diff_s = 0.02;  // Association of estimated to ground-truth poses.
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

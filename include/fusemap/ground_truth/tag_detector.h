@@ -33,6 +33,9 @@ struct TagDetectorOptions {
   // Bits the decoder may correct; more than 2 costs a lot of memory and raises false positives.
   int max_hamming = 2;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

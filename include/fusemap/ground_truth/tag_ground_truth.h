@@ -29,6 +29,9 @@ struct TagGroundTruthOptions {
   // Detections with a weaker decode (AprilTag decision margin) are ignored.
   double min_decision_margin = 20.0;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -24,6 +24,9 @@ struct ScoreOptions {
   // of its first pose after having been at least twice as far away.
   double loop_radius_m = 0.5;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

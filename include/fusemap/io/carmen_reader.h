@@ -33,6 +33,9 @@ struct CarmenOptions {
   // it is the filter's estimate, not wheel odometry.
   bool drop_gmapping_poses = true;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "fusemap/common/option_checker.h"
 #include "fusemap/sensor/sensor_types.h"
 
 namespace fusemap {
@@ -29,6 +30,9 @@ struct LidarChannelConfig {
   float range_min_m = 0.f;
   float range_max_m = 30.f;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

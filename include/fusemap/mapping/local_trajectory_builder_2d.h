@@ -45,6 +45,9 @@ struct LocalTrajectoryBuilderOptions2D {
   double pose_queue_duration_s = 0.5;
 
   LocalTrajectoryBuilderOptions2D();
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -14,6 +14,9 @@ struct MotionFilterOptions {
   double max_distance_m = 0.2;
   double max_angle_rad = 0.0175;  // 1 degree
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 MotionFilterOptions ParseMotionFilterOptions(common::ConfigReader& reader);

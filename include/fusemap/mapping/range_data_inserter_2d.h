@@ -17,6 +17,9 @@ struct ProbabilityGridRangeDataInserterOptions {
   float miss_probability = 0.49f;
   bool insert_free_space = true;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -26,6 +26,9 @@ struct SubmapsOptions {
   static constexpr int kMaxNumRangeData = 100000;
   ProbabilityGridRangeDataInserterOptions range_data_inserter;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

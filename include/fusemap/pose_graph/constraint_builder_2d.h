@@ -26,6 +26,9 @@ struct ConstraintBuilderOptions2D {
   mapping::CeresScanMatcherOptions2D ceres_scan_matcher;
 
   ConstraintBuilderOptions2D();
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -24,6 +24,9 @@ struct LoopClosureVerificationOptions2D {
   double max_rotation_error_rad = 0.05;
 
   bool enabled() const { return min_agreeing_closures > 0; }
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

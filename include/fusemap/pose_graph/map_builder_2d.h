@@ -19,9 +19,11 @@ struct MapBuilderOptions2D {
   mapping::LocalTrajectoryBuilderOptions2D local_slam;
   PoseGraphOptions2D global_slam;
 
-  bool IsValid(std::string* error) const {
-    return local_slam.IsValid(error) && global_slam.IsValid(error);
+  void Check(common::OptionChecker* check) const {
+    check->Nested("local_slam", local_slam);
+    check->Nested("global_slam", global_slam);
   }
+  bool IsValid(std::string* error) const { return common::IsValidOptions(*this, error); }
 };
 
 // Keys: local_slam, global_slam.

@@ -41,6 +41,9 @@ struct OdometryCalibrationOptions {
   int robust_iterations = 5;
   double huber_threshold_sigma = 1.345;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -22,6 +22,9 @@ struct OptimizationOptions {
   // Relative decrease of the cost below which the solve counts as converged.
   double function_tolerance = 1e-6;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

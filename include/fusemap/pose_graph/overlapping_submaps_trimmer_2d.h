@@ -26,6 +26,9 @@ struct OverlappingSubmapsTrimmerOptions2D {
   int min_added_submaps_count = 5;
 
   bool enabled() const { return fresh_submaps_count > 0; }
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -37,6 +37,9 @@ struct PoseGraphOptions2D {
   LoopClosureVerificationOptions2D loop_closure_verification;      // off by default
 
   PoseGraphOptions2D();
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

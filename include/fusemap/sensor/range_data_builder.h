@@ -20,6 +20,9 @@ struct RangeGateOptions {
   bool insert_misses = true;
   float missing_data_ray_length_m = 5.f;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "fusemap/common/option_checker.h"
+
 namespace fusemap {
 namespace sensor {
 
@@ -24,6 +26,9 @@ struct StampFilterOptions {
   // a time reset only if the next message follows it.
   double max_time_reset_s = 30.0 * 86400.0;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -24,6 +24,9 @@ struct AdaptiveVoxelFilterOptions {
   int min_num_points = 200;
   float max_range_m = 50.f;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -24,6 +24,9 @@ struct LaserOptions {
   double range_noise_stddev_m = 0.01;
   double mount_height_m = 0.3;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 LaserOptions ParseLaserOptions(common::ConfigReader& reader);

@@ -5,6 +5,7 @@
 #include <random>
 #include <string>
 
+#include "fusemap/common/option_checker.h"
 #include "fusemap/sensor/sensor_types.h"
 #include "fusemap/sim/trajectory.h"
 
@@ -20,6 +21,9 @@ struct OdometryOptions {
   double yaw_rate_bias_stddev_radps = 0.003;  // Drawn once per run.
   double yaw_rate_noise_stddev_radps = 0.01;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 
@@ -35,6 +39,9 @@ struct ImuOptions {
   double accel_bias_walk_mps2_per_sqrt_s = 0.001;
   double gyro_bias_walk_radps_per_sqrt_s = 0.0001;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

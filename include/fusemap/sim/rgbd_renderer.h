@@ -34,6 +34,9 @@ struct RgbdCameraOptions {
   // Depth noise stddev = k * z^2 (Khoshelham & Elberink 2012, Kinect random error model).
   double depth_noise_k_per_m = 0.0015;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 RgbdCameraOptions ParseRgbdCameraOptions(common::ConfigReader& reader);

@@ -30,6 +30,9 @@ struct SimulationOptions {
   ImuOptions imu;
   RgbdCameraOptions rgbd;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 // Keys: seconds, seed, start_time_s, ground_truth_rate_hz, rgbd_enabled and the children

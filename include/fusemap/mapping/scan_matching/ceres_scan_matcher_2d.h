@@ -22,6 +22,9 @@ struct CeresScanMatcherOptions2D {
   int max_num_iterations = 20;
   int num_threads = 1;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -30,6 +30,9 @@ struct FastCorrelativeScanMatcherOptions2D {
   double translation_delta_cost_weight = 0.0;
   double rotation_delta_cost_weight = 0.0;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

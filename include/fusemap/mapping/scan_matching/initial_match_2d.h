@@ -43,6 +43,9 @@ struct InitialMatchOptions2D {
   int refresh_every_n_insertions = 1;
 
   InitialMatchOptions2D();
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 

@@ -18,6 +18,9 @@ struct RealTimeCorrelativeScanMatcherOptions2D {
   double translation_delta_cost_weight = 1e-1;
   double rotation_delta_cost_weight = 1e-1;
 
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  // The first problem, as "<key> <why>".
   bool IsValid(std::string* error) const;
 };
 
