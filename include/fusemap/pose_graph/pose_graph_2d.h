@@ -11,7 +11,7 @@
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/mapping/submap_2d.h"
-#include "fusemap/pose_graph/constraint_builder_2d.h"
+#include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 #include "fusemap/pose_graph/loop_closure_verifier_2d.h"
 #include "fusemap/pose_graph/moved_submaps.h"
 #include "fusemap/pose_graph/optimization_options.h"

@@ -1,4 +1,4 @@
-#include "fusemap/pose_graph/constraint_builder_2d.h"
+#include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 
 namespace fusemap {
 namespace pose_graph {

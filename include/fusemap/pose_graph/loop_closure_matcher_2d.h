@@ -1,5 +1,5 @@
-#ifndef FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_
-#define FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_
+#ifndef FUSEMAP_POSE_GRAPH_LOOP_CLOSURE_MATCHER_2D_H_
+#define FUSEMAP_POSE_GRAPH_LOOP_CLOSURE_MATCHER_2D_H_
 
 #include <memory>
 #include <optional>
@@ -16,6 +16,9 @@
 namespace fusemap {
 namespace pose_graph {
 
+// The options of loop-closure search, under the profile key global_slam.constraint_builder
+// (Cartographer's name). Which node is searched against which submap, and when, is decided
+// by PoseGraph2D; this file holds the matcher one search runs.
 struct ConstraintBuilderOptions2D {
   // Fraction of (node, submap) pairs in range that are searched (Cartographer's sampling_ratio).
   double sampling_ratio = 0.3;
@@ -79,4 +82,4 @@ class FixedRatioSampler {
 }  // namespace pose_graph
 }  // namespace fusemap
 
-#endif  // FUSEMAP_POSE_GRAPH_CONSTRAINT_BUILDER_2D_H_
+#endif  // FUSEMAP_POSE_GRAPH_LOOP_CLOSURE_MATCHER_2D_H_
