@@ -5,6 +5,18 @@
 
 namespace fusemap {
 namespace session {
+namespace {
+
+// The pose graph's placements since the last call, as the cloud takes them.
+std::vector<cloud::SubmapPose2d> TakePlacements(pose_graph::MapBuilder2D* builder) {
+  std::vector<cloud::SubmapPose2d> placements;
+  for (const pose_graph::SubmapPlacement& p : builder->pose_graph().TakeSubmapPlacements()) {
+    placements.push_back({p.submap, p.T_map_submap});
+  }
+  return placements;
+}
+
+}  // namespace
 
 SlamSession::SlamSession(const io::SlamConfig& config, common::Executor* executor,
                          bool record_cloud_cost)
@@ -33,9 +45,7 @@ std::optional<pose_graph::MapBuilder2D::ScanResult> SlamSession::AddScan(
   auto result = builder_->AddScan(scan);
   if (cloud_stage_) {
     CloudPoseUpdate update;
-    for (const pose_graph::SubmapPlacement& p : builder_->pose_graph().TakeSubmapPlacements()) {
-      update.placements.push_back({p.submap, p.T_map_submap});
-    }
+    update.placements = TakePlacements(builder_.get());
     if (result && result->submap_id >= 0) {
       update.submap_id = result->submap_id;
       update.stamp_s = scan.stamp_s;
@@ -73,9 +83,7 @@ void SlamSession::Finish() {
   builder_->Finish();
   if (!cloud_stage_) return;
   CloudPoseUpdate last;
-  for (const pose_graph::SubmapPlacement& p : builder_->pose_graph().TakeSubmapPlacements()) {
-    last.placements.push_back({p.submap, p.T_map_submap});
-  }
+  last.placements = TakePlacements(builder_.get());
   if (cloud_sink_) {
     cloud_sink_(std::move(last));
   } else {
