@@ -34,7 +34,7 @@ export ASAN_OPTIONS="log_path=$logs/asan:detect_leaks=1:strict_init_order=1"
 # GCC's UBSan prints to stderr whatever log_path says: it exits with 86 instead, which no test
 # expects, and ctest's log of every test's output is searched for its reports below.
 export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:exitcode=86"
-export TSAN_OPTIONS="log_path=$logs/tsan:second_deadlock_stack=1"
+export TSAN_OPTIONS="log_path=$logs/tsan:second_deadlock_stack=1:suppressions=$PWD/tools/tsan.supp"
 
 status=0
 if [ "$mode" = asan ]; then
