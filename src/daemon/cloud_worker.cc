@@ -15,12 +15,9 @@ CloudWorker::CloudWorker(session::CloudStage* stage, CloudRegionPublisher* publi
 void CloudWorker::AddPoseUpdate(const session::CloudPoseUpdate& update) {
   // The session sends only submaps that are new or moved (PoseGraph2D::TakeSubmapPlacements).
   for (const cloud::SubmapPose2d& placement : update.placements) {
-    T_map_submaps_[placement.submap] = placement.T_map_submap;
     changed_.insert(placement.submap);
   }
   if (update.submap_id >= 0) {
-    // As the mapper: a submap global SLAM has not placed yet sits at its local pose.
-    T_map_submaps_.emplace(update.submap_id, update.T_local_submap);
     current_submap_id_ = update.submap_id;
     last_stamp_s_ = update.stamp_s;
   }
@@ -66,8 +63,10 @@ void CloudWorker::Publish(int max_regions) {
     if (publisher_ == nullptr) continue;
     const cloud::ColorCloud::Ptr points = mapper().binder().RegionCloud(id);
     if (!points || points->empty()) continue;
-    const auto it = T_map_submaps_.find(id);
-    if (it == T_map_submaps_.end()) continue;
+    // Where the mapper placed the region's submap (a submap global SLAM has not placed yet
+    // sits at its local pose).
+    const auto it = mapper().T_map_submaps().find(id);
+    if (it == mapper().T_map_submaps().end()) continue;
     publisher_->PublishCloudRegion(MakeCloudRegionUpdate(
         last_stamp_s_, id, common::Rigid3d::FromRigid2d(it->second), *points,
         kMaxPointsPerRegion));

@@ -2,7 +2,6 @@
 #define FUSEMAP_DAEMON_CLOUD_WORKER_H_
 
 #include <chrono>
-#include <map>
 #include <set>
 #include <vector>
 
@@ -44,7 +43,6 @@ class CloudWorker {
 
   session::CloudStage* const stage_;
   CloudRegionPublisher* const publisher_;
-  std::map<int, common::Rigid2d> T_map_submaps_;
   std::set<int> changed_;
   int current_submap_id_ = -1;
   double last_stamp_s_ = 0.0;
