@@ -5,7 +5,7 @@
 #       aborting at its first report), builds everything, runs the whole ctest suite, then the
 #       demo (tools/demo.sh, outputs in build-asan/demo).
 # tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd and fusemap_sim,
-#       simulates 6 s of the hall and replays it through fusemapd --threads 2 from
+#       simulates 6 s of the hall (fusemap_sim --threads 2) and replays it through fusemapd --threads 2 from
 #       file://...?speed=0 (outputs in build-tsan/replay).
 # ASan, LSan and TSan reports are written to BUILD/sanitizer-logs/ (so one in a child whose
 # exit code a test expects to be nonzero still counts), UBSan ones to stderr with exit code 86.
@@ -51,7 +51,7 @@ else
   out=$build_dir/replay
   rm -rf "$out"
   echo "== simulating 6 s (laser, odometry, IMU, RGB-D)"
-  "$build_dir/tools/sim/fusemap_sim" --world data/worlds/hall.yaml --seconds 6 --seed 1 \
+  "$build_dir/tools/sim/fusemap_sim" --world data/worlds/hall.yaml --seconds 6 --seed 1 --threads 2 \
     --out "$out" | tail -1 || status=1
   echo "== fusemapd --threads 2 over file://$PWD/$out/sim.lcm?speed=0 (TSan)"
   "$build_dir/tools/fusemapd/fusemapd" --config config/daemon.yaml \

@@ -55,7 +55,10 @@ bool RenderBatch(const sim::Simulation& simulation, int first, common::Executor*
     io::EncodeRgbdFrame(frame, encoding, &(*out)[i], &errors[i]);
   };
   for (int i = 0; i < n; ++i) {
-    if (executor == nullptr) {
+    // The log's first frame here even with an executor: OpenCV fills its codec registry at the
+    // first cv::imencode, behind a static guard that ThreadSanitizer cannot see in the
+    // uninstrumented library; filled before the workers start, later encodes only read it.
+    if (executor == nullptr || first + i == 0) {
       render(i);
     } else {
       executor->Schedule([&render, i] { render(i); });
