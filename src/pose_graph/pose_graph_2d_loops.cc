@@ -57,8 +57,10 @@ int PoseGraph2D::AddLoopConstraint(const ExternalLoopConstraint2D& external) {
   constraint.rotation_weight = external.rotation_weight;
   constraint.tag = Constraint2D::kInterSubmap;
   constraint.source = external.source;
+  constraint.laser_score = external.laser_score;
   constraint.loop_id = next_loop_id_++;
   constraints_.push_back(constraint);
+  NoteAcceptedLocked(constraint);
   return constraint.loop_id;
 }
 

@@ -76,6 +76,7 @@ struct ExternalLoopConstraint2D {
   double translation_weight = 1.0;
   double rotation_weight = 1.0;
   Constraint2D::Source source = Constraint2D::kVisual;
+  double laser_score = 0.0;  // with source kLaser
 };
 
 // A trimmed node with its final pose (PoseGraph2D::TrimmedNodes).
@@ -167,7 +168,8 @@ class PoseGraph2D {
   // trimmed meanwhile are left out.
   std::vector<LoopClosure2D> TakeNewLoopClosures();
   // Adds a loop closure; returns its id, or -1 if the node or the submap is gone (trimmed) or
-  // was never added, or the node was inserted into that submap.
+  // was never added, or the node was inserted into that submap. One with source kLaser (a
+  // laser loop found elsewhere) is reported by TakeNewLoopClosures like a search's.
   int AddLoopConstraint(const ExternalLoopConstraint2D& constraint);
   // Replaces the measurement, weights and source of loop closure `id` (its node and submap
   // stay); false if it is gone.
