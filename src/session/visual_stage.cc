@@ -351,6 +351,28 @@ void VisualStage::ReleaseTrimmedSubmaps() {
   }
 }
 
+io::VisualKeyframesState VisualStage::ExportState() const {
+  io::VisualKeyframesState state;
+  state.next_keyframe_id = checker_.next_keyframe_id();
+  for (visual_loop::SavedKeyframe& saved : checker_.ExportKeyframes()) {
+    const common::Rigid2d T_node_base = keyframes_.at(saved.keyframe.id).T_node_base;
+    state.keyframes.push_back({std::move(saved), T_node_base});
+  }
+  return state;
+}
+
+void VisualStage::RestoreState(io::VisualKeyframesState state) {
+  std::vector<visual_loop::SavedKeyframe> saved;
+  for (io::VisualKeyframesState::Entry& entry : state.keyframes) {
+    const visual_loop::Keyframe& k = entry.saved.keyframe;
+    keyframes_[k.id] = {k.node, k.submap, entry.T_node_base};
+    saved.push_back(std::move(entry.saved));
+  }
+  checker_.RestoreKeyframes(std::move(saved), state.next_keyframe_id);
+  // Keyframes of submaps trimmed since they were saved go at once.
+  ReleaseTrimmedSubmaps();
+}
+
 VisualStageStats VisualStage::stats() const {
   VisualStageStats stats = stats_;
   stats.checker = checker_.stats();
