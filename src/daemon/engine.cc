@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "fusemap/daemon/resume.h"
+#include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
 namespace daemon {
@@ -240,6 +241,32 @@ void Engine::OfferVisualFrame(const sensor::RgbdFrame& frame) {
   visual_frames_.Push(frame);
 }
 
+int Engine::RestoreVisualKeyframes(io::VisualKeyframesState state) {
+  std::lock_guard<std::mutex> lock(finish_mutex_);
+  assert(!started_);
+  session::VisualStage* stage = session_->visual_stage();
+  if (stage == nullptr) return 0;
+  const int nodes = session_->builder().pose_graph().stats().nodes;
+  auto& keyframes = state.keyframes;
+  keyframes.erase(std::remove_if(keyframes.begin(), keyframes.end(),
+                                 [nodes](const io::VisualKeyframesState::Entry& e) {
+                                   return e.saved.keyframe.node >= nodes;
+                                 }),
+                  keyframes.end());
+  const int kept = static_cast<int>(keyframes.size());
+  stage->RestoreState(std::move(state));
+  return kept;
+}
+
+void Engine::SaveVisualKeyframes(const session::VisualStage& stage) {
+  if (visual_keyframes_path_.empty()) return;
+  std::string error;
+  if (!io::WriteVisualKeyframesFile(visual_keyframes_path_, stage.ExportState(), &error)) {
+    ++checkpoint_failures_;
+    if (log_ != nullptr) log_->Report("visual keyframes", error);
+  }
+}
+
 void Engine::RunVisual() {
   using Clock = std::chrono::steady_clock;
   session::VisualStage* stage = session_->visual_stage();
@@ -252,7 +279,19 @@ void Engine::RunVisual() {
       newest_loop_ = {visual_loop::ToString(newest.source), visual_loop::ToString(newest.decision)};
     }
   };
+  // Saved on this thread, which alone owns the keyframes, on the checkpoint period.
+  const bool periodic = options_.checkpoint_period_s > 0.0;
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(periodic ? options_.checkpoint_period_s : 1.0));
+  auto next_save = Clock::now() + period;
+  int saved_keyframes = -1;
   while (true) {
+    if (periodic && Clock::now() >= next_save) {
+      next_save = Clock::now() + period;
+      const int keyframes = stage->stats().checker.keyframes;
+      if (keyframes != saved_keyframes) SaveVisualKeyframes(*stage);
+      saved_keyframes = keyframes;
+    }
     // Poses first (only those already queued), then at most one frame: a frame waits in the
     // stage for the pose after it.
     while (auto update = visual_poses_.PopUntil(Clock::now() - kRgbdPoll)) stage->Apply(*update);
@@ -267,6 +306,7 @@ void Engine::RunVisual() {
   }
   stage->Finish();
   publish();
+  SaveVisualKeyframes(*stage);
   visual_done_.set_value();
 }
 

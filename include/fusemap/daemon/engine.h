@@ -66,6 +66,14 @@ class Engine {
   void SetTrajectoryArchive(std::unique_ptr<io::TrajectoryArchive> archive) {
     session_->SetTrajectoryArchive(std::move(archive));
   }
+  // Before Start(), with visual_loop.enabled: the visual thread writes its keyframes to `path`
+  // (io::WriteVisualKeyframesFile, atomically) every daemon.checkpoint_period_s when they
+  // changed, and at shutdown. Failures count as checkpoint failures.
+  void SetVisualKeyframesFile(const std::string& path) { visual_keyframes_path_ = path; }
+  // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
+  // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
+  // as their node indices will be given to new nodes; returns how many were kept.
+  int RestoreVisualKeyframes(io::VisualKeyframesState state);
 
   void Start();
   Intake& intake() { return intake_; }
@@ -105,6 +113,8 @@ class Engine {
   // RGB-D thread: a decoded frame for the visual thread (those the checker would skip anyway,
   // closer than its min_interval_s, are not copied).
   void OfferVisualFrame(const sensor::RgbdFrame& frame);
+  // Visual thread: its keyframes to visual_keyframes_path_.
+  void SaveVisualKeyframes(const session::VisualStage& stage);
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
   void PublishSubmapsAndLoops(double stamp_s);
@@ -135,6 +145,7 @@ class Engine {
   double last_visual_frame_s_ = -1e300;  // RGB-D thread only
   // Set by the visual thread once its stage has finished (SlamSession::Finish waits for it).
   std::promise<void> visual_done_;
+  std::string visual_keyframes_path_;  // empty: keyframes are not saved
   std::unique_ptr<common::Executor> executor_;
   std::unique_ptr<session::SlamSession> session_;
 
