@@ -129,27 +129,17 @@ void CloudMapper::Finish() {
 }
 
 void CloudMapper::ProcessPending() {
-  while (!pending_.empty()) {
-    const sensor::RgbdFrame& frame = pending_.front().frame;
-    // After the end of input no later pose will come, so waiting is pointless.
-    const double now_s = finished_ ? frame.stamp_s + options_.sync.hold_s + 1.0 : newest_stamp_s_;
-    const PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
-    if (result.status == PoseInterpolator::Status::kWait) return;
-    if (result.status == PoseInterpolator::Status::kReady) {
-      Bind(pending_.front(), result.T_local_tracking);
-    } else {
-      ++stats_.frames_dropped_no_pose;
-    }
-    pending_.pop_front();
-  }
+  DrainPendingFrames(
+      &pending_, &interpolator_, newest_stamp_s_, finished_, options_.sync.hold_s,
+      [](const PendingFrame& pending) { return pending.frame.stamp_s; },
+      [this](const PendingFrame& pending, const common::Rigid2d& T_local_tracking) {
+        Bind(pending, T_local_tracking);
+      },
+      [this](const PendingFrame&) { ++stats_.frames_dropped_no_pose; });
 }
 
 const CloudMapper::Binding* CloudMapper::BindingAt(double stamp_s) const {
-  const auto it = std::upper_bound(
-      bindings_.begin(), bindings_.end(), stamp_s,
-      [](double stamp, const Binding& binding) { return stamp < binding.stamp_s; });
-  if (it == bindings_.begin()) return bindings_.empty() ? nullptr : &bindings_.front();
-  return &*std::prev(it);
+  return LatestAtOrBefore(bindings_, stamp_s);
 }
 
 void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_local_tracking) {

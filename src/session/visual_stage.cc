@@ -110,27 +110,17 @@ void VisualStage::Finish() {
 }
 
 void VisualStage::ProcessPending() {
-  while (!pending_.empty()) {
-    const sensor::RgbdFrame& frame = pending_.front();
-    // After the end of input no later pose will come, so waiting is pointless.
-    const double now_s = finished_ ? frame.stamp_s + camera_.sync.hold_s + 1.0 : newest_stamp_s_;
-    const cloud::PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
-    if (result.status == cloud::PoseInterpolator::Status::kWait) return;
-    if (result.status == cloud::PoseInterpolator::Status::kReady) {
-      Offer(frame, result.T_local_tracking);
-    } else {
-      ++stats_.frames_dropped_no_pose;
-    }
-    pending_.pop_front();
-  }
+  cloud::DrainPendingFrames(
+      &pending_, &interpolator_, newest_stamp_s_, finished_, camera_.sync.hold_s,
+      [](const sensor::RgbdFrame& frame) { return frame.stamp_s; },
+      [this](const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base) {
+        Offer(frame, T_local_base);
+      },
+      [this](const sensor::RgbdFrame&) { ++stats_.frames_dropped_no_pose; });
 }
 
 const VisualStage::Binding* VisualStage::BindingAt(double stamp_s) const {
-  const auto it = std::upper_bound(
-      bindings_.begin(), bindings_.end(), stamp_s,
-      [](double stamp, const Binding& binding) { return stamp < binding.stamp_s; });
-  if (it == bindings_.begin()) return bindings_.empty() ? nullptr : &bindings_.front();
-  return &*std::prev(it);
+  return cloud::LatestAtOrBefore(bindings_, stamp_s);
 }
 
 void VisualStage::Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base) {
