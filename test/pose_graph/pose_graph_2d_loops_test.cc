@@ -10,6 +10,7 @@
 #include "fusemap/pose_graph/pose_graph_2d.h"
 #include "fusemap/sensor/range_data_builder.h"
 #include "fusemap/sensor/voxel_filter.h"
+#include "testing/drifting_arc_drive.h"
 #include "testing/synthetic_room.h"
 
 namespace fusemap {
@@ -42,25 +43,9 @@ class LoopRun {
 
   template <typename F>
   void Drive(int num_nodes, F&& after_node) {
-    const std::vector<test_world::Segment> walls = test_world::Room();
-    mapping::SubmapsOptions submap_options;
-    submap_options.num_range_data = 10;
-    mapping::ActiveSubmaps2D active(submap_options);
-    sensor::AdaptiveVoxelFilterOptions filter;
-    filter.max_length_m = 0.9f;
-    filter.min_num_points = 100;
-    common::Rigid2d T_local_node = TruePose(0);
     for (int i = 0; i < num_nodes; ++i) {
-      if (i > 0) {
-        const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
-        T_local_node = T_local_node * common::Rigid2d(1.01 * delta.translation(),
-                                                      delta.angle_rad() + common::DegToRad(0.1));
-      }
-      const sensor::RangeData data = test_world::SimulateRangeData(walls, TruePose(i));
-      const auto submaps = active.InsertRangeData(sensor::TransformRangeData(data, T_local_node));
-      if (i == 0) first_submap_ = submaps.front();
-      graph_.AddNode(0.1 * i, T_local_node, sensor::AdaptiveVoxelFilter(data.returns, filter),
-                     submaps);
+      const test_world::DriftingArcDrive::Step step = drive_.Next();
+      graph_.AddNode(0.1 * i, step.T_local_node, step.filtered_cloud, step.insertion_submaps);
       after_node(i);
     }
   }
@@ -78,16 +63,14 @@ class LoopRun {
   }
   // The true pose of node `node` in submap 0's frame (local SLAM barely drifted while it was
   // built, so its local pose is close to the truth).
-  common::Rigid2d TrueSubmap0Node(int node) const {
-    return first_submap_->T_local_submap().inverse() * TruePose(node);
-  }
+  common::Rigid2d TrueSubmap0Node(int node) const { return drive_.TrueInFirstSubmap(node); }
 
   PoseGraph2D& graph() { return graph_; }
 
  private:
   common::InlineExecutor executor_;
   PoseGraph2D graph_;
-  std::shared_ptr<const mapping::Submap2D> first_submap_;
+  test_world::DriftingArcDrive drive_{kStepM};
 };
 
 ExternalLoopConstraint2D Visual(int node, int submap, const common::Rigid2d& T_submap_node) {

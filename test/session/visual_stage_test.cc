@@ -11,6 +11,7 @@
 #include "fusemap/pose_graph/pose_graph_2d.h"
 #include "fusemap/sensor/range_data_builder.h"
 #include "fusemap/sensor/voxel_filter.h"
+#include "testing/drifting_arc_drive.h"
 #include "testing/synthetic_room.h"
 #include "testing/textured_box_camera.h"
 
@@ -67,45 +68,26 @@ class VisualRun {
     return options;
   }
 
-  // Nodes next_node_ .. num_nodes - 1; with a camera, a frame after each scan.
+  // Nodes up to num_nodes - 1 (continuing); with a camera, a frame after each scan.
   void Drive(int num_nodes, bool with_camera = true) {
-    const std::vector<test_world::Segment> walls = test_world::Room();
-    if (!active_) {
-      mapping::SubmapsOptions submap_options;
-      submap_options.num_range_data = 10;
-      active_ = std::make_unique<mapping::ActiveSubmaps2D>(submap_options);
-    }
-    sensor::AdaptiveVoxelFilterOptions filter;
-    filter.max_length_m = 0.9f;
-    filter.min_num_points = 100;
-    for (int i = next_node_; i < num_nodes; ++i) {
-      if (i > 0) {
-        const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
-        T_local_node_ = T_local_node_ * common::Rigid2d(1.01 * delta.translation(),
-                                                      delta.angle_rad() + common::DegToRad(0.1));
-      }
-      const sensor::RangeData data = test_world::SimulateRangeData(walls, TruePose(i));
-      const auto submaps = active_->InsertRangeData(sensor::TransformRangeData(data, T_local_node_));
-      if (i == 0) first_submap_ = submaps.front();
-      const double stamp_s = 0.1 * i;
-      const int node = graph_.AddNode(stamp_s, T_local_node_,
-                                      sensor::AdaptiveVoxelFilter(data.returns, filter), submaps);
+    while (drive_.next_index() < num_nodes) {
+      const test_world::DriftingArcDrive::Step step = drive_.Next();
+      const double stamp_s = 0.1 * step.index;
+      const int node =
+          graph_.AddNode(stamp_s, step.T_local_node, step.filtered_cloud, step.insertion_submaps);
       CloudPoseUpdate update;
       update.stamp_s = stamp_s;
-      update.T_local_tracking = T_local_node_;
-      update.submap_id = graph_.SubmapIndex(submaps.front().get());
-      update.T_local_submap = submaps.front()->T_local_submap();
+      update.T_local_tracking = step.T_local_node;
+      update.submap_id = graph_.SubmapIndex(step.insertion_submaps.front().get());
+      update.T_local_submap = step.insertion_submaps.front()->T_local_submap();
       update.node_id = node;
       stage_->Apply(update);
-      if (with_camera) stage_->AddFrame(camera_.Render(stamp_s, TruePose(i)));
+      if (with_camera) stage_->AddFrame(camera_.Render(stamp_s, step.T_true));
     }
-    next_node_ = std::max(next_node_, num_nodes);
   }
 
   // The true pose of `node` in submap 0 (local SLAM barely drifted while it was built).
-  common::Rigid2d TrueSubmap0Node(int node) const {
-    return first_submap_->T_local_submap().inverse() * TruePose(node);
-  }
+  common::Rigid2d TrueSubmap0Node(int node) const { return drive_.TrueInFirstSubmap(node); }
   // A laser loop as the search would have found it.
   int AddLaserLoop(int node, int submap, const common::Rigid2d& T_submap_node) {
     pose_graph::ExternalLoopConstraint2D c;
@@ -146,11 +128,7 @@ class VisualRun {
   pose_graph::PoseGraph2D graph_;
   test_world::TexturedBoxCamera camera_;
   std::unique_ptr<VisualStage> stage_;
-  std::shared_ptr<const mapping::Submap2D> first_submap_;
-  // Drive() continues where it stopped.
-  int next_node_ = 0;
-  common::Rigid2d T_local_node_ = TruePose(0);
-  std::unique_ptr<mapping::ActiveSubmaps2D> active_;
+  test_world::DriftingArcDrive drive_{kStepM};
 };
 
 double DistanceM(const common::Rigid2d& a, const common::Rigid2d& b) {
