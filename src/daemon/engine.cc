@@ -1,5 +1,9 @@
 #include "fusemap/daemon/engine.h"
 
+#include <sys/resource.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cassert>
 #include <limits>
@@ -24,6 +28,8 @@ constexpr std::chrono::milliseconds kRgbdPoll{50};
 // Scan poses for the visual thread: minutes of them at 25 Hz; if it lags further the oldest go
 // (counted), never the SLAM thread's time.
 constexpr size_t kVisualPoseQueueSize = 4096;
+// The visual thread's nice value (Linux: per thread).
+constexpr int kVisualThreadNice = 10;
 
 std::chrono::steady_clock::duration Period(double rate_hz) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -269,6 +275,9 @@ void Engine::SaveVisualKeyframes(const session::VisualStage& stage) {
 
 void Engine::RunVisual() {
   using Clock = std::chrono::steady_clock;
+  // A back-end that may lag: on a busy machine the SLAM thread (pose publication) gets the CPU
+  // first. Lowering one's own thread priority needs no privilege; failing to is harmless.
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kVisualThreadNice);
   session::VisualStage* stage = session_->visual_stage();
   const auto publish = [this, stage] {
     std::lock_guard<std::mutex> lock(visual_mutex_);
