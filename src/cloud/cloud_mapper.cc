@@ -7,9 +7,10 @@
 
 namespace fusemap {
 namespace cloud {
-namespace {
 
-common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
+common::Rigid3d CameraExtrinsic(const CloudMapperOptions& options,
+                                const sensor::RgbdFrame& frame) {
+  if (!options.override_extrinsic) return frame.T_base_color;
   const auto& xyz = options.T_base_camera_xyz_m;
   const auto& rpy = options.T_base_camera_rpy_deg;
   const Eigen::Quaterniond rotation =
@@ -18,8 +19,6 @@ common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
       Eigen::AngleAxisd(common::DegToRad(rpy[0]), Eigen::Vector3d::UnitX());
   return common::Rigid3d(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), rotation);
 }
-
-}  // namespace
 
 void CloudMapperOptions::Check(common::OptionChecker* check) const {
   check->Require(min_frame_interval_s >= 0.0, "min_frame_interval_s", "must be >= 0");
@@ -130,27 +129,17 @@ void CloudMapper::Finish() {
 }
 
 void CloudMapper::ProcessPending() {
-  while (!pending_.empty()) {
-    const sensor::RgbdFrame& frame = pending_.front().frame;
-    // After the end of input no later pose will come, so waiting is pointless.
-    const double now_s = finished_ ? frame.stamp_s + options_.sync.hold_s + 1.0 : newest_stamp_s_;
-    const PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
-    if (result.status == PoseInterpolator::Status::kWait) return;
-    if (result.status == PoseInterpolator::Status::kReady) {
-      Bind(pending_.front(), result.T_local_tracking);
-    } else {
-      ++stats_.frames_dropped_no_pose;
-    }
-    pending_.pop_front();
-  }
+  DrainPendingFrames(
+      &pending_, &interpolator_, newest_stamp_s_, finished_, options_.sync.hold_s,
+      [](const PendingFrame& pending) { return pending.frame.stamp_s; },
+      [this](const PendingFrame& pending, const common::Rigid2d& T_local_tracking) {
+        Bind(pending, T_local_tracking);
+      },
+      [this](const PendingFrame&) { ++stats_.frames_dropped_no_pose; });
 }
 
 const CloudMapper::Binding* CloudMapper::BindingAt(double stamp_s) const {
-  const auto it = std::upper_bound(
-      bindings_.begin(), bindings_.end(), stamp_s,
-      [](double stamp, const Binding& binding) { return stamp < binding.stamp_s; });
-  if (it == bindings_.begin()) return bindings_.empty() ? nullptr : &bindings_.front();
-  return &*std::prev(it);
+  return LatestAtOrBefore(bindings_, stamp_s);
 }
 
 void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_local_tracking) {
@@ -160,8 +149,7 @@ void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_loc
     ++stats_.frames_dropped_no_submap;
     return;
   }
-  const common::Rigid3d T_base_color =
-      options_.override_extrinsic ? ExtrinsicFromConfig(options_) : frame.T_base_color;
+  const common::Rigid3d T_base_color = CameraExtrinsic(options_, frame);
   const common::Rigid3d T_submap_tracking =
       common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_tracking);
   if (options_.binder.remove_dynamic && !options_.binder.ray_carving) {

@@ -9,6 +9,7 @@
 
 #include "fusemap/io/cloud_image.h"
 #include "fusemap/io/cloud_writer.h"
+#include "fusemap/io/loops_file.h"
 #include "fusemap/io/map_writer.h"
 #include "fusemap/io/tum_trajectory.h"
 #include "fusemap/mapping/grid_image.h"
@@ -168,6 +169,10 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : dense) xy.push_back(p.pose.translation());
+  if (run.loop_records != nullptr) {
+    if (!io::WriteLoopsTsv(out + "loops.tsv", *run.loop_records, error)) return false;
+    report->files.push_back(out + "loops.tsv");
+  }
   mapping::GridImage laser_map;
   if (!WriteMap(run, xy, out, report, &laser_map, error)) return false;
   if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {

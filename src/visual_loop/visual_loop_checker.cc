@@ -41,6 +41,7 @@ VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& fr
   Keyframe keyframe = MakeKeyframe(frame.image, frame.depth_m, frame.intrinsics, extractor_,
                                    vocabulary_.get(), options_.keyframe);
   keyframe.id = next_id_++;
+  out.keyframe_id = keyframe.id;
   keyframe.node = node;
   keyframe.submap = submap;
   keyframe.stamp_s = frame.stamp_s;
@@ -148,6 +149,24 @@ void VisualLoopChecker::RemoveSubmap(int submap) {
     detector_.Remove(id);
     T_base_camera_.erase(id);
   }
+}
+
+std::vector<SavedKeyframe> VisualLoopChecker::ExportKeyframes() const {
+  std::vector<SavedKeyframe> saved;
+  for (const auto& [id, keyframe] : detector_.keyframes()) {
+    saved.push_back({keyframe, T_base_camera_.at(id)});
+  }
+  return saved;
+}
+
+void VisualLoopChecker::RestoreKeyframes(std::vector<SavedKeyframe> keyframes, int next_id) {
+  assert(detector_.size() == 0);
+  for (SavedKeyframe& saved : keyframes) {
+    assert(saved.keyframe.id < next_id);
+    T_base_camera_[saved.keyframe.id] = saved.T_base_camera;
+    detector_.Restore(std::move(saved.keyframe));
+  }
+  next_id_ = next_id;
 }
 
 VisualLoopCheckerStats VisualLoopChecker::stats() const {

@@ -16,7 +16,7 @@ if(TARGET fusemapd AND TARGET fusemap_sim_tool)
   add_test(NAME daemon_kill_resume
            COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/daemon/kill_resume.sh
                    $<TARGET_FILE:fusemapd> $<TARGET_FILE:fusemap_sim_tool> ${PROJECT_SOURCE_DIR})
-  set_tests_properties(daemon_kill_resume PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 240)
+  set_tests_properties(daemon_kill_resume PROPERTIES SKIP_RETURN_CODE 77 TIMEOUT 400)
 endif()
 # The far-odometry replay runs fusemap_offline itself.
 if(TARGET daemon_far_odometry_replay_test AND TARGET fusemap_offline)

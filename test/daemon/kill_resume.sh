@@ -2,7 +2,8 @@
 # fusemapd crash recovery inside a fresh network namespace (multicast never leaves loopback):
 # while lcm-logplayer replays a simulated log, kill -9 the daemon after a few checkpoints,
 # restart it with --resume, and check that the final outputs cover the whole run. Then truncate
-# the checkpoint: --resume must detect it, use checkpoint.fmck.prev and say so.
+# the checkpoint: --resume must detect it, use checkpoint.fmck.prev and say so. Last, with the
+# visual loop checker on: kill -9 and --resume keep its keyframes.
 # usage: kill_resume.sh FUSEMAPD FUSEMAP_SIM SOURCE_DIR
 # Exit 77 (ctest: skipped) where network namespaces or the LCM tools are unavailable.
 set -u
@@ -127,4 +128,34 @@ n_prev=$(resumed_nodes "$WORK/daemon3.err")
 [ "$n_prev" = "$n_prev_expected" ] || fail "resumed $n_prev nodes from .prev, expected $n_prev_expected"
 [ "$(count_poses "$WORK/out3/nodes.tum")" -eq "$n_prev" ] || fail "nodes.tum after .prev resume"
 echo "truncated checkpoint: $(grep 'previous checkpoint' "$WORK/daemon3.err" | head -1)"
+
+# The visual loop checker's keyframes survive kill -9 too: a short log with RGB-D replayed in
+# real time from a file (no multicast needed), the checker on and the cloud off.
+"$SIM" --world "$SRC/data/worlds/hall.yaml" --seconds 16 --seed 5 --rgbd-rate 5 \
+  --out "$WORK/simv" >"$WORK/simv.out" 2>&1 || fail "fusemap_sim (RGB-D): $(tail -3 "$WORK/simv.out")"
+sed '/^cloud:/{n;s/^  enabled: true/  enabled: false/}' "$WORK/config.yaml" >"$WORK/visual.yaml"
+printf 'visual_loop:\n  enabled: true\n' >>"$WORK/visual.yaml"
+VURL="file://$WORK/simv/sim.lcm?speed=${FUSEMAP_PLAYBACK_SPEED:-1.0}"
+KF="$WORK/outv/visual_keyframes.fmvk"
+"$FUSEMAPD" --config "$WORK/visual.yaml" --lcm-url "$VURL" --out "$WORK/outv" \
+  >"$WORK/daemonv1.out" 2>"$WORK/daemonv1.err" &
+FOURTH=$!
+PIDS+=($FOURTH)
+wait_for 30 test -s "$KF" || fail "no visual keyframes file within 30 s"
+wait_for 30 bash -c "[ \$(grep -c 'checkpoint .*nodes' '$WORK/daemonv1.err') -ge 3 ]" ||
+  fail "fewer than 3 checkpoints with the visual checker on"
+kill -9 "$FOURTH"
+wait "$FOURTH" 2>/dev/null
+"$FUSEMAPD" --config "$WORK/visual.yaml" --lcm-url "$VURL" --out "$WORK/outv" --resume \
+  >"$WORK/daemonv2.out" 2>"$WORK/daemonv2.err" &
+FIFTH=$!
+PIDS+=($FIFTH)
+wait "$FIFTH"
+rc=$?
+PIDS=()
+[ "$rc" -eq 0 ] || fail "resumed fusemapd with the visual checker: exit code $rc"
+kept=$(sed -n 's/.*resumed \([0-9]*\) of \([0-9]*\) visual keyframes.*/\1/p' "$WORK/daemonv2.err")
+[ -n "$kept" ] && [ "$kept" -gt 0 ] || fail "no visual keyframes resumed"
+[ -s "$WORK/outv/loops.tsv" ] || fail "no loops.tsv"
+echo "visual: $(grep 'visual keyframes' "$WORK/daemonv2.err" | head -1)"
 echo PASS

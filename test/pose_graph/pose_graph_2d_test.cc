@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "fusemap/common/math.h"
+#include "testing/drifting_arc_drive.h"
 #include "testing/synthetic_room.h"
 #include "fusemap/sensor/range_data_builder.h"
 #include "fusemap/sensor/voxel_filter.h"
@@ -50,38 +51,21 @@ struct RunResult {
   std::vector<common::Rigid2d> T_map_submaps;
 };
 
-// Stands in for local SLAM with a known drift: every step's estimated motion has 1 % too much
-// translation and 0.1 deg too much yaw, and scans go into the submaps at the drifted poses, so
-// submaps and nodes are consistently wrong, as they are after real local SLAM.
+// Local SLAM with a known drift (testing/drifting_arc_drive.h).
 RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Executor* executor) {
-  const std::vector<Segment> walls = Room();
-  mapping::SubmapsOptions submap_options;
-  submap_options.num_range_data = 10;
-  mapping::ActiveSubmaps2D active(submap_options);
-  sensor::AdaptiveVoxelFilterOptions filter;
-  filter.max_length_m = 0.9f;
-  filter.min_num_points = 100;
-
+  test_world::DriftingArcDrive drive(kStepM);
   RunResult result;
   PoseGraph2D graph(options, executor);
   graph.AddSubmapsMovedCallback([&result](const std::vector<SubmapMove>& moves) {
     ++result.callbacks;
     result.moved_submaps += static_cast<int>(moves.size());
   });
-  common::Rigid2d T_local_node = TruePose(0);
   for (int i = 0; i < num_nodes; ++i) {
-    if (i > 0) {
-      const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
-      T_local_node = T_local_node * common::Rigid2d(1.01 * delta.translation(),
-                                                    delta.angle_rad() + common::DegToRad(0.1));
-    }
-    const sensor::RangeData data = SimulateRangeData(walls, TruePose(i));
-    const auto submaps =
-        active.InsertRangeData(sensor::TransformRangeData(data, T_local_node));
-    EXPECT_EQ(graph.AddNode(0.1 * i, T_local_node,
-                            sensor::AdaptiveVoxelFilter(data.returns, filter), submaps),
+    const test_world::DriftingArcDrive::Step step = drive.Next();
+    EXPECT_EQ(graph.AddNode(0.1 * i, step.T_local_node, step.filtered_cloud,
+                            step.insertion_submaps),
               i);
-    result.T_local_nodes.push_back(T_local_node);
+    result.T_local_nodes.push_back(step.T_local_node);
     for (const SubmapPlacement& p : graph.TakeSubmapPlacements()) {
       result.placed_new[p.submap] += p.is_new;
       result.placed[p.submap] = p.T_map_submap;

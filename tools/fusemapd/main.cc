@@ -20,6 +20,7 @@
 #include "fusemap/daemon/lcm_input.h"
 #include "fusemap/daemon/lcm_publisher.h"
 #include "fusemap/daemon/resume.h"
+#include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
 namespace {
@@ -45,7 +46,10 @@ constexpr char kUsage[] =
     "kept as DIR/checkpoint.fmck.prev). Each checkpoint first moves the odometry record and\n"
     "the nodes submap trimming let go (global_slam.overlapping_submaps_trimmer) out of memory\n"
     "into DIR/archive/ (nodes.bin, odometry.bin), so memory stays flat in a mapped place; the\n"
-    "output files still cover the whole run.\n"
+    "output files still cover the whole run. With visual_loop.enabled the ORB visual loop\n"
+    "checker runs on its own thread on the RGB-D frames: its decisions go to DIR/loops.tsv at\n"
+    "shutdown, its keyframes to DIR/visual_keyframes.fmvk (restored by --resume); as they\n"
+    "depend on its timing, a file:// replay then no longer equals fusemap_offline bit for bit.\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
@@ -154,6 +158,24 @@ int Run(const Args& args) {
                  resume.used_path.c_str(), resume.contents.state.pose_graph.nodes.size(),
                  resume.contents.state.submaps.size());
     resume = daemon::ResumeCheckpoint();  // the engine has its own copy now
+  }
+  if (slam.visual_loop.enabled) {
+    // The visual loop checker's keyframes live beside the checkpoint (its own thread writes
+    // them); a missing or damaged file costs the keyframes, not the resume.
+    const std::string keyframes_path = args.out + "/visual_keyframes.fmvk";
+    if (args.resume) {
+      io::VisualKeyframesState keyframes;
+      if (io::ReadVisualKeyframesFile(keyframes_path, &keyframes, &error)) {
+        const size_t saved = keyframes.keyframes.size();
+        const int kept = engine->RestoreVisualKeyframes(std::move(keyframes));
+        std::fprintf(stderr, "fusemapd: resumed %d of %zu visual keyframes from %s\n", kept, saved,
+                     keyframes_path.c_str());
+      } else {
+        std::fprintf(stderr, "fusemapd: --resume: visual keyframes not restored: %s\n",
+                     error.c_str());
+      }
+    }
+    engine->SetVisualKeyframesFile(keyframes_path);
   }
   input.Subscribe(&engine->intake());
   engine->Start();

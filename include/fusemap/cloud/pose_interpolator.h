@@ -1,6 +1,7 @@
 #ifndef FUSEMAP_CLOUD_POSE_INTERPOLATOR_H_
 #define FUSEMAP_CLOUD_POSE_INTERPOLATOR_H_
 
+#include <algorithm>
 #include <cstdint>
 #include <deque>
 #include <string>
@@ -81,6 +82,42 @@ class PoseInterpolator {
   int64_t num_dropped_gap_ = 0;
   int64_t num_dropped_timeout_ = 0;
 };
+
+// The consumers of camera frames (CloudMapper, session::VisualStage) queue each frame until
+// the laser pose after it is known; these two helpers are that queue's logic, written once.
+//
+// Hands the queued frames, oldest first, their interpolated pose: ready(frame, T_local_tracking)
+// or, if no pose can be had, dropped(frame); stops at the first that must keep waiting.
+// `newest_stamp_s` is the newest laser stamp seen; once `finished`, no later pose will come,
+// so nothing waits any more. stamp_of(frame) gives a queued frame's stamp.
+template <typename Frame, typename StampOf, typename Ready, typename Dropped>
+void DrainPendingFrames(std::deque<Frame>* pending, PoseInterpolator* interpolator,
+                        double newest_stamp_s, bool finished, double hold_s, StampOf&& stamp_of,
+                        Ready&& ready, Dropped&& dropped) {
+  while (!pending->empty()) {
+    const double stamp_s = stamp_of(pending->front());
+    const double now_s = finished ? stamp_s + hold_s + 1.0 : newest_stamp_s;
+    const PoseInterpolator::Result result = interpolator->Lookup(stamp_s, now_s);
+    if (result.status == PoseInterpolator::Status::kWait) return;
+    if (result.status == PoseInterpolator::Status::kReady) {
+      ready(pending->front(), result.T_local_tracking);
+    } else {
+      dropped(pending->front());
+    }
+    pending->pop_front();
+  }
+}
+
+// The latest of time-ordered entries (members stamp_s) at or before `stamp_s`; the first if
+// all are later, null if there are none: which submap a frame taken then binds to.
+template <typename Entry>
+const Entry* LatestAtOrBefore(const std::deque<Entry>& entries, double stamp_s) {
+  const auto it = std::upper_bound(
+      entries.begin(), entries.end(), stamp_s,
+      [](double stamp, const Entry& entry) { return stamp < entry.stamp_s; });
+  if (it == entries.begin()) return entries.empty() ? nullptr : &entries.front();
+  return &*std::prev(it);
+}
 
 }  // namespace cloud
 }  // namespace fusemap
