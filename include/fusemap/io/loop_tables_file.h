@@ -1,0 +1,31 @@
+#ifndef FUSEMAP_IO_LOOP_TABLES_FILE_H_
+#define FUSEMAP_IO_LOOP_TABLES_FILE_H_
+
+#include <istream>
+#include <string>
+#include <vector>
+
+#include "fusemap/eval/loop_closure_score.h"
+
+namespace fusemap {
+namespace io {
+
+// DIR/loops.tsv: one loop per line, `node submap source laser_score visual_inliers decision x
+// y yaw` (T_submap_node, metres and radians; a header naming the last column `yaw_deg` makes
+// it degrees), whitespace-separated. '#' comments, blank lines and a header line starting with
+// `node` are skipped. Errors name `origin:line: reason`.
+bool ReadLoops(std::istream& in, const std::string& origin, std::vector<eval::LoopRecord>* loops,
+               std::string* error);
+bool ReadLoopsFile(const std::string& path, std::vector<eval::LoopRecord>* loops,
+                   std::string* error);
+
+// DIR/submaps.tsv: `submap first_node x y yaw` per line (T_map_submap, radians), same rules.
+bool ReadSubmapAnchors(std::istream& in, const std::string& origin,
+                       std::vector<eval::SubmapAnchor>* submaps, std::string* error);
+bool ReadSubmapAnchorsFile(const std::string& path, std::vector<eval::SubmapAnchor>* submaps,
+                           std::string* error);
+
+}  // namespace io
+}  // namespace fusemap
+
+#endif  // FUSEMAP_IO_LOOP_TABLES_FILE_H_

@@ -1,0 +1,58 @@
+#include "fusemap/io/loop_tables_file.h"
+
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+namespace fusemap {
+namespace io {
+namespace {
+
+TEST(LoopTablesFileTest, ReadsLoopsWithHeaderAndDegrees) {
+  std::istringstream in(
+      "# loops\nnode submap source laser_score visual_inliers decision x y yaw_deg\n"
+      "12 3 both 0.71 85 laser_confirmed 1.5 -0.25 90\n\n4 0 visual 0 40 visual_forced 0 0 0\n");
+  std::vector<eval::LoopRecord> loops;
+  std::string error;
+  ASSERT_TRUE(ReadLoops(in, "loops.tsv", &loops, &error)) << error;
+  ASSERT_EQ(loops.size(), 2u);
+  EXPECT_EQ(loops[0].node, 12);
+  EXPECT_EQ(loops[0].submap, 3);
+  EXPECT_EQ(loops[0].source, "both");
+  EXPECT_DOUBLE_EQ(loops[0].laser_score, 0.71);
+  EXPECT_EQ(loops[0].visual_inliers, 85);
+  EXPECT_EQ(loops[0].decision, "laser_confirmed");
+  EXPECT_DOUBLE_EQ(loops[0].T_submap_node.x(), 1.5);
+  EXPECT_NEAR(loops[0].T_submap_node.angle_rad(), 1.5707963267948966, 1e-12);
+  EXPECT_EQ(loops[1].decision, "visual_forced");
+}
+
+TEST(LoopTablesFileTest, ErrorsNameLineAndField) {
+  std::vector<eval::LoopRecord> loops;
+  std::string error;
+  std::istringstream short_line("1 2 laser 0.5 0 laser_kept 1 2\n");
+  EXPECT_FALSE(ReadLoops(short_line, "l.tsv", &loops, &error));
+  EXPECT_NE(error.find("l.tsv:1: expected 9 fields"), std::string::npos) << error;
+  std::istringstream bad_node("\n-1 2 laser 0.5 0 laser_kept 1 2 3\n");
+  EXPECT_FALSE(ReadLoops(bad_node, "l.tsv", &loops, &error));
+  EXPECT_NE(error.find("l.tsv:2: node '-1'"), std::string::npos) << error;
+  std::istringstream bad_x("1 2 laser 0.5 0 laser_kept nan 2 3\n");
+  EXPECT_FALSE(ReadLoops(bad_x, "l.tsv", &loops, &error));
+  EXPECT_NE(error.find("x 'nan' is not a finite number"), std::string::npos) << error;
+}
+
+TEST(LoopTablesFileTest, ReadsSubmapAnchors) {
+  std::istringstream in("submap first_node x y yaw\n0 0 0 0 0\n1 58 3.5 0.25 -0.1\n");
+  std::vector<eval::SubmapAnchor> submaps;
+  std::string error;
+  ASSERT_TRUE(ReadSubmapAnchors(in, "s.tsv", &submaps, &error)) << error;
+  ASSERT_EQ(submaps.size(), 2u);
+  EXPECT_EQ(submaps[1].first_node, 58);
+  EXPECT_DOUBLE_EQ(submaps[1].T_map_submap.y(), 0.25);
+  EXPECT_FALSE(ReadSubmapAnchorsFile("/nonexistent/submaps.tsv", &submaps, &error));
+  EXPECT_NE(error.find("cannot open"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace io
+}  // namespace fusemap
