@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <sstream>
 
 #include "fusemap/common/math.h"
@@ -75,6 +76,17 @@ class TableReader {
   int line_number_ = 0;
 };
 
+bool WriteText(const std::string& path, const std::string& text, std::string* error) {
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) {
+    *error = path + ": write failed";
+    return false;
+  }
+  return true;
+}
+
 template <typename Read, typename Out>
 bool ReadFile(const std::string& path, Read read, Out* out, std::string* error) {
   std::ifstream in(path);
@@ -145,6 +157,29 @@ bool ReadSubmapAnchors(std::istream& in, const std::string& origin,
 bool ReadSubmapAnchorsFile(const std::string& path, std::vector<eval::SubmapAnchor>* submaps,
                            std::string* error) {
   return ReadFile(path, ReadSubmapAnchors, submaps, error);
+}
+
+bool WriteLoopsFile(const std::string& path, const std::vector<eval::LoopRecord>& loops,
+                    std::string* error) {
+  std::ostringstream out;
+  out << std::setprecision(9) << "node\tsubmap\tsource\tlaser_score\tvisual_inliers\tdecision\tx\ty\tyaw\n";
+  for (const eval::LoopRecord& l : loops) {
+    out << l.node << '\t' << l.submap << '\t' << l.source << '\t' << l.laser_score << '\t'
+        << l.visual_inliers << '\t' << l.decision << '\t' << l.T_submap_node.x() << '\t'
+        << l.T_submap_node.y() << '\t' << l.T_submap_node.angle_rad() << '\n';
+  }
+  return WriteText(path, out.str(), error);
+}
+
+bool WriteSubmapAnchorsFile(const std::string& path, const std::vector<eval::SubmapAnchor>& submaps,
+                            std::string* error) {
+  std::ostringstream out;
+  out << std::setprecision(9) << "submap\tfirst_node\tx\ty\tyaw\n";
+  for (const eval::SubmapAnchor& s : submaps) {
+    out << s.submap << '\t' << s.first_node << '\t' << s.T_map_submap.x() << '\t'
+        << s.T_map_submap.y() << '\t' << s.T_map_submap.angle_rad() << '\n';
+  }
+  return WriteText(path, out.str(), error);
 }
 
 }  // namespace io

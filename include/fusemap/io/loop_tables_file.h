@@ -25,6 +25,12 @@ bool ReadSubmapAnchors(std::istream& in, const std::string& origin,
 bool ReadSubmapAnchorsFile(const std::string& path, std::vector<eval::SubmapAnchor>* submaps,
                            std::string* error);
 
+// Writers of the same layouts (with a header line; yaw in radians, 9 significant digits).
+bool WriteLoopsFile(const std::string& path, const std::vector<eval::LoopRecord>& loops,
+                    std::string* error);
+bool WriteSubmapAnchorsFile(const std::string& path, const std::vector<eval::SubmapAnchor>& submaps,
+                            std::string* error);
+
 }  // namespace io
 }  // namespace fusemap
 
