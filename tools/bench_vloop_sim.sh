@@ -4,7 +4,8 @@
 # log laser-only and with the checker on, and score both against the simulator's truth.
 # Usage: tools/bench_vloop_sim.sh [BUILD_DIR [OUT_DIR]]   (defaults build, out/bench_vloop_sim)
 # Environment: FUSEMAP_BENCH_SEED (1), FUSEMAP_BENCH_WORLDS ("corridor rooms"),
-#              FUSEMAP_BENCH_RGBD_RATE (2 Hz), FUSEMAP_BENCH_THREADS (2).
+#              FUSEMAP_BENCH_RGBD_RATE (2 Hz), FUSEMAP_BENCH_THREADS (2, rendering only: the
+#              mapping runs with --threads 1, which is reproducible bit for bit).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 build=${1:-build}
@@ -47,8 +48,7 @@ for world in $worlds; do
     run=$dir/$mode
     config=$out/$mode.yaml
     echo "== $world: mapping $mode" >&2
-    if ! "$offline" --log "$dir/sim.lcm" --config "$config" --out "$run" --threads "$threads" \
-      --quiet > "$run.txt" 2>&1; then
+    if ! "$offline" --log "$dir/sim.lcm" --config "$config" --out "$run" --threads 1 --quiet > "$run.txt" 2>&1; then
       if [[ $mode == checker ]] && grep -q "visual_loop" "$run.txt"; then
         rows+=("$(printf '%-9s %-8s %s' "$world" "$mode" "not available in this build: $(grep -m1 visual_loop "$run.txt")")")
         continue
