@@ -41,7 +41,7 @@ TEST_P(VisualWorldTest, PostersDistinctExceptTheTrapPair) {
     if (count == 2) ++traps;
     EXPECT_LE(count, 2) << "poster seed " << seed;
   }
-  EXPECT_EQ(traps, 1);  // one poster hangs in two places
+  EXPECT_GE(traps, 1);  // the trap: a poster segment hanging in two places
 }
 
 TEST_P(VisualWorldTest, SecondLapDarkerAndNoisier) {
