@@ -7,9 +7,10 @@
 
 namespace fusemap {
 namespace cloud {
-namespace {
 
-common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
+common::Rigid3d CameraExtrinsic(const CloudMapperOptions& options,
+                                const sensor::RgbdFrame& frame) {
+  if (!options.override_extrinsic) return frame.T_base_color;
   const auto& xyz = options.T_base_camera_xyz_m;
   const auto& rpy = options.T_base_camera_rpy_deg;
   const Eigen::Quaterniond rotation =
@@ -18,8 +19,6 @@ common::Rigid3d ExtrinsicFromConfig(const CloudMapperOptions& options) {
       Eigen::AngleAxisd(common::DegToRad(rpy[0]), Eigen::Vector3d::UnitX());
   return common::Rigid3d(Eigen::Vector3d(xyz[0], xyz[1], xyz[2]), rotation);
 }
-
-}  // namespace
 
 void CloudMapperOptions::Check(common::OptionChecker* check) const {
   check->Require(min_frame_interval_s >= 0.0, "min_frame_interval_s", "must be >= 0");
@@ -160,8 +159,7 @@ void CloudMapper::Bind(const PendingFrame& pending, const common::Rigid2d& T_loc
     ++stats_.frames_dropped_no_submap;
     return;
   }
-  const common::Rigid3d T_base_color =
-      options_.override_extrinsic ? ExtrinsicFromConfig(options_) : frame.T_base_color;
+  const common::Rigid3d T_base_color = CameraExtrinsic(options_, frame);
   const common::Rigid3d T_submap_tracking =
       common::Rigid3d::FromRigid2d(binding->T_local_submap.inverse() * T_local_tracking);
   if (options_.binder.remove_dynamic && !options_.binder.ray_carving) {

@@ -15,11 +15,13 @@ bool HasPixels(const sensor::PinholeIntrinsics& intrinsics) {
          intrinsics.fy > 0.0;
 }
 
-// Back-projects the depth image into the colour camera and colours each point from the pixel
-// it lands on (nearest pixel; pixel centres at integer coordinates, as cx/cy assume).
-ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
-                                     const FrameCloudOptions& options, FrameCloudStats* stats) {
-  auto cloud = pcl::make_shared<ColorCloud>();
+// Back-projects the depth image (every `stride`-th row and column) into the colour camera and
+// calls visit(p_color, color_col, color_row) for each point in range that lands on a colour
+// pixel (nearest pixel; pixel centres at integer coordinates, as cx/cy assume). False if the
+// frame lacks images or intrinsics.
+template <typename Visit>
+bool ForEachRegisteredPoint(const sensor::RgbdFrame& frame, int stride, double min_range_m,
+                            double max_range_m, FrameCloudStats* stats, Visit&& visit) {
   const sensor::PinholeIntrinsics& depth = frame.depth_intrinsics;
   const sensor::PinholeIntrinsics& color = frame.color_intrinsics;
   const size_t depth_pixels = static_cast<size_t>(std::max(0, depth.width)) *
@@ -28,12 +30,10 @@ ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
                               static_cast<size_t>(std::max(0, color.height));
   if (!HasPixels(depth) || !HasPixels(color) || frame.depth_mm.size() < depth_pixels ||
       frame.color_rgb.size() < 3 * color_pixels) {
-    return cloud;
+    return false;
   }
   const Eigen::Matrix3d R_color_depth = frame.T_color_depth.rotation().toRotationMatrix();
   const Eigen::Vector3d t_color_depth = frame.T_color_depth.translation();
-  const int stride = options.pixel_stride;
-  cloud->reserve(depth_pixels / static_cast<size_t>(stride * stride));
   for (int row = 0; row < depth.height; row += stride) {
     const uint16_t* depth_row = frame.depth_mm.data() + static_cast<size_t>(row) * depth.width;
     for (int col = 0; col < depth.width; col += stride) {
@@ -42,7 +42,7 @@ ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
       if (depth_mm == 0) continue;
       ++stats->valid_depth;
       const double z_m = 1e-3 * depth_mm;
-      if (z_m < options.min_range_m || z_m > options.max_range_m) {
+      if (z_m < min_range_m || z_m > max_range_m) {
         ++stats->out_of_range;
         continue;
       }
@@ -61,15 +61,30 @@ ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
         ++stats->no_color;
         continue;
       }
-      const uint8_t* rgb =
-          frame.color_rgb.data() + 3 * (static_cast<size_t>(color_row) * color.width + color_col);
-      ColorPoint point(rgb[0], rgb[1], rgb[2]);
-      point.x = static_cast<float>(p_color.x());
-      point.y = static_cast<float>(p_color.y());
-      point.z = static_cast<float>(p_color.z());
-      cloud->push_back(point);
+      visit(p_color, static_cast<int>(color_col), static_cast<int>(color_row));
     }
   }
+  return true;
+}
+
+// Each registered point, coloured from the pixel it lands on.
+ColorCloud::Ptr RegisterDepthToColor(const sensor::RgbdFrame& frame,
+                                     const FrameCloudOptions& options, FrameCloudStats* stats) {
+  auto cloud = pcl::make_shared<ColorCloud>();
+  const sensor::PinholeIntrinsics& color = frame.color_intrinsics;
+  const int stride = options.pixel_stride;
+  cloud->reserve(frame.depth_mm.size() / static_cast<size_t>(stride * stride));
+  ForEachRegisteredPoint(
+      frame, stride, options.min_range_m, options.max_range_m, stats,
+      [&](const Eigen::Vector3d& p_color, int color_col, int color_row) {
+        const uint8_t* rgb = frame.color_rgb.data() +
+                             3 * (static_cast<size_t>(color_row) * color.width + color_col);
+        ColorPoint point(rgb[0], rgb[1], rgb[2]);
+        point.x = static_cast<float>(p_color.x());
+        point.y = static_cast<float>(p_color.y());
+        point.z = static_cast<float>(p_color.z());
+        cloud->push_back(point);
+      });
   stats->registered = static_cast<int64_t>(cloud->size());
   return cloud;
 }
@@ -139,6 +154,26 @@ CameraCloud BuildFrameCloud(const sensor::RgbdFrame& frame, const FrameCloudOpti
   stats->after_outlier = static_cast<int64_t>(cloud->size());
   result.points_camera = cloud;
   return result;
+}
+
+std::vector<float> RegisterDepthImage(const sensor::RgbdFrame& frame, double min_range_m,
+                                      double max_range_m) {
+  const sensor::PinholeIntrinsics& color = frame.color_intrinsics;
+  std::vector<float> depth_m;
+  FrameCloudStats stats;
+  const size_t pixels = static_cast<size_t>(std::max(0, color.width)) *
+                        static_cast<size_t>(std::max(0, color.height));
+  depth_m.assign(pixels, 0.0f);
+  const bool ok = ForEachRegisteredPoint(
+      frame, 1, min_range_m, max_range_m, &stats,
+      [&](const Eigen::Vector3d& p_color, int color_col, int color_row) {
+        // Where several depth pixels land on one colour pixel, the nearest surface is seen.
+        float& z = depth_m[static_cast<size_t>(color_row) * color.width + color_col];
+        const float z_m = static_cast<float>(p_color.z());
+        if (z == 0.0f || z_m < z) z = z_m;
+      });
+  if (!ok) depth_m.clear();
+  return depth_m;
 }
 
 }  // namespace cloud

@@ -159,18 +159,6 @@ bool ReadSubmapAnchorsFile(const std::string& path, std::vector<eval::SubmapAnch
   return ReadFile(path, ReadSubmapAnchors, submaps, error);
 }
 
-bool WriteLoopsFile(const std::string& path, const std::vector<eval::LoopRecord>& loops,
-                    std::string* error) {
-  std::ostringstream out;
-  out << std::setprecision(9) << "node\tsubmap\tsource\tlaser_score\tvisual_inliers\tdecision\tx\ty\tyaw\n";
-  for (const eval::LoopRecord& l : loops) {
-    out << l.node << '\t' << l.submap << '\t' << l.source << '\t' << l.laser_score << '\t'
-        << l.visual_inliers << '\t' << l.decision << '\t' << l.T_submap_node.x() << '\t'
-        << l.T_submap_node.y() << '\t' << l.T_submap_node.angle_rad() << '\n';
-  }
-  return WriteText(path, out.str(), error);
-}
-
 bool WriteSubmapAnchorsFile(const std::string& path, const std::vector<eval::SubmapAnchor>& submaps,
                             std::string* error) {
   std::ostringstream out;

@@ -20,6 +20,7 @@ void ParseSlamConfig(common::ConfigReader& reader, SlamConfig* config) {
   lidar.CheckOptions(result.lidar);
   result.map_builder = pose_graph::ParseMapBuilderOptions2D(reader);
   result.cloud = cloud::ParseCloudMapperOptions(reader.Child("cloud"));
+  result.visual_loop = ParseVisualLoopConfig(reader.Child("visual_loop"));
   *config = result;
 }
 

@@ -21,10 +21,11 @@ std::optional<MapBuilder2D::ScanResult> MapBuilder2D::AddScan(const sensor::Lase
   auto result = local_.AddScan(scan);
   if (!result) return std::nullopt;
   if (result->insertion) {
-    pose_graph_.AddNode(result->stamp_s, result->T_local_tracking,
+    newest_node_ = pose_graph_.AddNode(result->stamp_s, result->T_local_tracking,
                         result->insertion->filtered_cloud, result->insertion->insertion_submaps);
   }
   ScanResult out;
+  out.node = newest_node_;
   out.T_local_tracking = result->T_local_tracking;
   out.T_map_tracking = pose_graph_.T_map_local() * result->T_local_tracking;
   const auto active = local_.active_submaps();
@@ -75,6 +76,7 @@ std::unique_ptr<MapBuilder2D> MapBuilder2D::Restore(const MapBuilderOptions2D& o
   builder->pose_graph_.RestoreState(
       state.pose_graph,
       std::vector<std::shared_ptr<const mapping::Submap2D>>(submaps.begin(), submaps.end()));
+  builder->newest_node_ = state.pose_graph.stats.nodes - 1;
   return builder;
 }
 

@@ -175,6 +175,7 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
     if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
     constraint->submap = search.submap;
     constraint->node = search.node;
+    constraint->laser_score = score;
     AddLoopClosureLocked(*constraint);
   });
 }
@@ -182,8 +183,10 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
 void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
   const LoopClosureVerificationOptions2D& verification = options_.loop_closure_verification;
   constraints_.push_back(constraint);
+  constraints_.back().loop_id = next_loop_id_++;
   if (!verification.enabled()) {
     ++stats_.loop_closures_found;
+    NoteAcceptedLocked(constraints_.back());
     return;
   }
   constraints_.back().tag = Constraint2D::kLoopClosureCandidate;
@@ -200,6 +203,7 @@ void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
   for (int v : ClosuresToAccept(views, static_cast<int>(views.size()) - 1, verification)) {
     constraints_[constraint_index[v]].tag = Constraint2D::kInterSubmap;
     ++stats_.loop_closures_found;
+    NoteAcceptedLocked(constraints_[constraint_index[v]]);
   }
 }
 

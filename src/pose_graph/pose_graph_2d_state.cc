@@ -32,6 +32,7 @@ PoseGraphState2D PoseGraph2D::ExportState(
   state.finished_submaps_at_last_trim = finished_submaps_at_last_trim_;
   state.solve_count = solve_count_;
   state.stats = stats_;
+  state.next_loop_id = next_loop_id_;
   return state;
 }
 
@@ -70,6 +71,7 @@ void PoseGraph2D::RestoreState(
     finished_submaps_at_last_trim_ = state.finished_submaps_at_last_trim;
     solve_count_ = state.solve_count;
     stats_ = state.stats;
+    next_loop_id_ = state.next_loop_id;
     if (options_.optimize_every_n_nodes == 0) return;
 
     std::map<int, std::vector<PendingSearch2D>> searches_by_submap;

@@ -10,6 +10,7 @@
 #include "fusemap/io/cloud_image.h"
 #include "fusemap/io/cloud_writer.h"
 #include "fusemap/io/loop_tables_file.h"
+#include "fusemap/io/loops_file.h"
 #include "fusemap/io/map_writer.h"
 #include "fusemap/io/tum_trajectory.h"
 #include "fusemap/mapping/grid_image.h"
@@ -103,9 +104,10 @@ bool WriteCloud(const cloud::CloudMapper& mapper, const mapping::GridImage& lase
 namespace {
 
 // DIR/submaps.tsv (each held submap's map pose and the first node inserted into it, which ties
-// the submap frame to a true pose for fusemap_eval loops) and DIR/loops.tsv (the graph's laser
-// loop closures as they stand at the end, all `laser_kept`).
-bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, const std::string& out,
+// the submap frame to a true pose for fusemap_eval loops) and, when no visual stage records the
+// loop decisions (graph_loops), DIR/loops.tsv: the graph's laser loop closures as they stand at
+// the end, all `laser_kept`.
+bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, bool graph_loops, const std::string& out,
                      RunOutputsReport* report, std::string* error) {
   std::vector<std::shared_ptr<const mapping::Submap2D>> submaps;
   const pose_graph::PoseGraphState2D state = graph.ExportState(&submaps);
@@ -121,16 +123,21 @@ bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, const std::string& ou
   for (size_t i = 0; i < first_node.size(); ++i) {
     if (first_node[i] >= 0) anchors.push_back({static_cast<int>(i), first_node[i], state.T_map_submaps[i]});
   }
-  std::vector<eval::LoopRecord> loops;
+  if (!io::WriteSubmapAnchorsFile(out + "submaps.tsv", anchors, error)) return false;
+  report->files.push_back(out + "submaps.tsv");
+  if (!graph_loops) return true;
+  std::vector<visual_loop::ArbitrationRecord> loops;
   for (const pose_graph::Constraint2D& c : state.constraints) {
     if (c.tag != pose_graph::Constraint2D::kInterSubmap) continue;
-    loops.push_back({c.node, c.submap, "laser", 0.0, 0, "laser_kept", c.T_submap_node});
+    visual_loop::ArbitrationRecord record;
+    record.node = c.node;
+    record.submap = c.submap;
+    record.laser = visual_loop::LoopMeasurement2D{c.T_submap_node};
+    record.laser->laser_score = c.laser_score;
+    loops.push_back(record);
   }
-  if (!io::WriteSubmapAnchorsFile(out + "submaps.tsv", anchors, error) ||
-      !io::WriteLoopsFile(out + "loops.tsv", loops, error)) {
-    return false;
-  }
-  report->files.insert(report->files.end(), {out + "submaps.tsv", out + "loops.tsv"});
+  if (!io::WriteLoopsTsv(out + "loops.tsv", loops, error)) return false;
+  report->files.push_back(out + "loops.tsv");
   return true;
 }
 
@@ -203,9 +210,15 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
   }
   report->files.insert(report->files.end(),
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
-  if (!WriteLoopTables(run.builder->pose_graph(), out, report, error)) return false;
+  if (!WriteLoopTables(run.builder->pose_graph(), run.loop_records == nullptr, out, report, error)) {
+    return false;
+  }
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : dense) xy.push_back(p.pose.translation());
+  if (run.loop_records != nullptr) {
+    if (!io::WriteLoopsTsv(out + "loops.tsv", *run.loop_records, error)) return false;
+    report->files.push_back(out + "loops.tsv");
+  }
   mapping::GridImage laser_map;
   if (!WriteMap(run, xy, out, report, &laser_map, error)) return false;
   if (run.cloud_mapper != nullptr && run.cloud_mapper->stats().frames_bound > 0) {

@@ -26,12 +26,21 @@ SlamSession::SlamSession(const io::SlamConfig& config, common::Executor* executo
   if (config_.cloud.enabled) {
     cloud_stage_ = std::make_unique<CloudStage>(config_.cloud, record_cloud_cost);
   }
+  MakeVisualStage();
+}
+
+void SlamSession::MakeVisualStage() {
+  if (!config_.visual_loop.enabled) return;
+  visual_stage_ = std::make_unique<VisualStage>(config_.visual_loop, config_.cloud,
+                                                &builder_->pose_graph());
 }
 
 void SlamSession::Restore(const pose_graph::MapBuilderState2D& state,
                           std::vector<sensor::OdometryData> odometry) {
   builder_ = pose_graph::MapBuilder2D::Restore(config_.map_builder, executor_, state);
   odometry_ = std::move(odometry);
+  // The stage holds the graph it applies its decisions to.
+  MakeVisualStage();
 }
 
 double SlamSession::last_odometry_stamp_s() const {
@@ -43,17 +52,25 @@ double SlamSession::last_odometry_stamp_s() const {
 std::optional<pose_graph::MapBuilder2D::ScanResult> SlamSession::AddScan(
     const sensor::LaserScan& scan) {
   auto result = builder_->AddScan(scan);
-  if (cloud_stage_) {
-    CloudPoseUpdate update;
-    update.placements = TakePlacements(builder_.get());
-    if (result && result->submap_id >= 0) {
-      update.submap_id = result->submap_id;
-      update.stamp_s = scan.stamp_s;
-      update.T_local_tracking = result->T_local_tracking;
-      update.T_local_submap = result->T_local_submap;
-    }
-    if (!update.empty()) SendToCloud(std::move(update));
+  if (!cloud_stage_ && !visual_stage_) return result;
+  CloudPoseUpdate update;
+  if (cloud_stage_) update.placements = TakePlacements(builder_.get());
+  if (result && result->submap_id >= 0) {
+    update.submap_id = result->submap_id;
+    update.stamp_s = scan.stamp_s;
+    update.T_local_tracking = result->T_local_tracking;
+    update.T_local_submap = result->T_local_submap;
+    update.node_id = result->node;
   }
+  if (update.empty()) return result;
+  if (visual_stage_) {
+    if (visual_sink_.update) {
+      visual_sink_.update(update);
+    } else {
+      visual_stage_->Apply(update);
+    }
+  }
+  if (cloud_stage_) SendToCloud(std::move(update));
   return result;
 }
 
@@ -69,6 +86,7 @@ void SlamSession::AddImu(const sensor::ImuData& imu) { builder_->AddImu(imu); }
 
 void SlamSession::AddRgbdFrame(const sensor::RgbdFrame& frame) {
   if (cloud_stage_ && !cloud_sink_) cloud_stage_->AddFrame(frame);
+  if (visual_stage_ && !visual_sink_.update) visual_stage_->AddFrame(frame);
 }
 
 void SlamSession::SendToCloud(CloudPoseUpdate&& update) {
@@ -80,6 +98,15 @@ void SlamSession::SendToCloud(CloudPoseUpdate&& update) {
 }
 
 void SlamSession::Finish() {
+  if (visual_stage_) {
+    // Laser loops still being searched are arbitrated too, before the final optimisation.
+    executor_->WaitIdle();
+    if (visual_sink_.finish) {
+      visual_sink_.finish();
+    } else {
+      visual_stage_->Finish();
+    }
+  }
   builder_->Finish();
   if (!cloud_stage_) return;
   CloudPoseUpdate last;
@@ -112,6 +139,7 @@ bool SlamSession::WriteOutputs(const std::string& dir, RunOutputsReport* report,
   run.map_resolution_m = config_.map_builder.local_slam.submaps.resolution_m;
   run.cloud_mapper = cloud_stage_ ? &cloud_stage_->mapper() : nullptr;
   run.archive = archive_.get();
+  run.loop_records = visual_stage_ ? &visual_stage_->records() : nullptr;
   return WriteRunOutputs(run, dir, report, error);
 }
 

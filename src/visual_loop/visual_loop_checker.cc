@@ -41,6 +41,7 @@ VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& fr
   Keyframe keyframe = MakeKeyframe(frame.image, frame.depth_m, frame.intrinsics, extractor_,
                                    vocabulary_.get(), options_.keyframe);
   keyframe.id = next_id_++;
+  out.keyframe_id = keyframe.id;
   keyframe.node = node;
   keyframe.submap = submap;
   keyframe.stamp_s = frame.stamp_s;

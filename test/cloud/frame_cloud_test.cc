@@ -173,6 +173,31 @@ TEST(FrameCloudTest, OptionsValidationAndParsing) {
   EXPECT_NE(error.find("pixel_stride"), std::string::npos);
 }
 
+TEST(FrameCloudTest, RegisteredDepthImageCoversTheColourPixelsDepthLandsOn) {
+  sensor::RgbdFrame frame = WallFrame(2000);
+  // Same camera for both: every colour pixel gets its own depth.
+  frame.depth_intrinsics = frame.color_intrinsics;
+  frame.depth_mm.assign(320 * 240, 2000);
+  frame.depth_mm[5 * 320 + 7] = 0;  // a hole stays a hole
+  std::vector<float> depth_m = RegisterDepthImage(frame, 0.2, 5.5);
+  ASSERT_EQ(depth_m.size(), 320u * 240u);
+  EXPECT_FLOAT_EQ(depth_m[0], 2.0f);
+  EXPECT_FLOAT_EQ(depth_m[5 * 320 + 7], 0.0f);
+  EXPECT_FLOAT_EQ(depth_m[239 * 320 + 319], 2.0f);
+  // Out of range: nothing registered.
+  depth_m = RegisterDepthImage(frame, 0.2, 1.5);
+  EXPECT_FLOAT_EQ(depth_m[100 * 320 + 100], 0.0f);
+  // The low-resolution depth camera of WallFrame covers every other colour pixel.
+  const sensor::RgbdFrame wall = WallFrame(2000);
+  depth_m = RegisterDepthImage(wall, 0.2, 5.5);
+  ASSERT_EQ(depth_m.size(), 320u * 240u);
+  int covered = 0;
+  for (float z : depth_m) covered += z > 0.0f;
+  EXPECT_EQ(covered, 160 * 120);
+  // No images: empty.
+  EXPECT_TRUE(RegisterDepthImage(sensor::RgbdFrame(), 0.2, 5.5).empty());
+}
+
 }  // namespace
 }  // namespace cloud
 }  // namespace fusemap

@@ -4,6 +4,8 @@
 
 #include <sstream>
 
+#include "fusemap/io/loops_file.h"
+
 namespace fusemap {
 namespace io {
 namespace {
@@ -55,23 +57,31 @@ TEST(LoopTablesFileTest, ReadsSubmapAnchors) {
 
 TEST(LoopTablesFileTest, WrittenTablesReadBack) {
   const std::string dir = ::testing::TempDir();
-  std::vector<eval::LoopRecord> loops(1);
-  loops[0] = {7, 2, "laser", 0.625, 0, "laser_kept", common::Rigid2d(1.25, -3.5, 0.75)};
+  // loops.tsv as the session writes it (io::WriteLoopsTsv).
+  std::vector<visual_loop::ArbitrationRecord> loops(1);
+  loops[0].node = 7;
+  loops[0].submap = 2;
+  loops[0].laser = visual_loop::LoopMeasurement2D{common::Rigid2d(1.25, -3.5, 0.75)};
+  loops[0].laser->laser_score = 0.625;
   std::vector<eval::SubmapAnchor> submaps = {{2, 60, common::Rigid2d(4, 5, -1.5)}};
   std::string error;
-  ASSERT_TRUE(WriteLoopsFile(dir + "/loops.tsv", loops, &error)) << error;
+  ASSERT_TRUE(WriteLoopsTsv(dir + "/loops.tsv", loops, &error)) << error;
   ASSERT_TRUE(WriteSubmapAnchorsFile(dir + "/submaps.tsv", submaps, &error)) << error;
   std::vector<eval::LoopRecord> loops_read;
   std::vector<eval::SubmapAnchor> submaps_read;
   ASSERT_TRUE(ReadLoopsFile(dir + "/loops.tsv", &loops_read, &error)) << error;
   ASSERT_TRUE(ReadSubmapAnchorsFile(dir + "/submaps.tsv", &submaps_read, &error)) << error;
   ASSERT_EQ(loops_read.size(), 1u);
+  EXPECT_EQ(loops_read[0].node, 7);
+  EXPECT_EQ(loops_read[0].source, "laser");
   EXPECT_EQ(loops_read[0].decision, "laser_kept");
+  EXPECT_DOUBLE_EQ(loops_read[0].laser_score, 0.625);
+  EXPECT_DOUBLE_EQ(loops_read[0].T_submap_node.x(), 1.25);
   EXPECT_DOUBLE_EQ(loops_read[0].T_submap_node.angle_rad(), 0.75);
   ASSERT_EQ(submaps_read.size(), 1u);
   EXPECT_EQ(submaps_read[0].first_node, 60);
   EXPECT_DOUBLE_EQ(submaps_read[0].T_map_submap.x(), 4.0);
-  EXPECT_FALSE(WriteLoopsFile("/nonexistent/dir/loops.tsv", loops, &error));
+  EXPECT_FALSE(WriteSubmapAnchorsFile("/nonexistent/dir/submaps.tsv", submaps, &error));
   EXPECT_NE(error.find("write failed"), std::string::npos) << error;
 }
 

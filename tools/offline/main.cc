@@ -20,6 +20,9 @@ constexpr char kUsage[] =
     "options:\n"
     "  --no-loop-closure   local SLAM only (no loop-closure search, no optimisation)\n"
     "  --no-cloud          ignore RGB-D frames (as cloud.enabled: false)\n"
+    "  --visual-loop       run the ORB visual loop checker on the RGB-D frames (as\n"
+    "                      visual_loop.enabled: true); writes DIR/loops.tsv\n"
+    "  --no-visual-loop    as visual_loop.enabled: false\n"
     "  --threads N         worker threads for loop-closure search and optimisation (default 1:\n"
     "                      reproducible; more is faster but no longer bit-for-bit repeatable)\n"
     "  --quiet             no progress line\n"
@@ -49,6 +52,9 @@ int main(int argc, char** argv) {
   command_line.AddString("--out", &args.out, Required::kYes);
   command_line.AddFlag("--no-loop-closure", &args.loop_closure, false);
   command_line.AddFlag("--no-cloud", &args.cloud, false);
+  bool visual_loop_on = false, visual_loop_off = false;
+  command_line.AddFlag("--visual-loop", &visual_loop_on);
+  command_line.AddFlag("--no-visual-loop", &visual_loop_off);
   command_line.AddInt("--threads", &args.threads, 1, 64);
   command_line.AddFlag("--quiet", &args.quiet);
   command_line.AddString("--relations", &args.relations);
@@ -56,6 +62,10 @@ int main(int argc, char** argv) {
   command_line.AddString("--relations-stamp-map", &args.relations_stamp_map);
   command_line.AddFlag("--calibrate-odometry", &args.calibrate_odometry);
   if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return *exit_code;
+  if (visual_loop_on && visual_loop_off) {
+    return command_line.UsageError("--visual-loop and --no-visual-loop exclude each other");
+  }
+  if (visual_loop_on || visual_loop_off) args.visual_loop = visual_loop_on;
   if (args.relations.empty() && !args.relations_stamp_map.empty()) {
     return command_line.UsageError("--relations-stamp-map needs --relations");
   }

@@ -52,6 +52,14 @@ int Run(const Args& args) {
   }
   if (!args.loop_closure) config.map_builder.global_slam.optimize_every_n_nodes = 0;
   if (!args.cloud) config.cloud.enabled = false;
+  if (args.visual_loop) {
+    config.visual_loop.enabled = *args.visual_loop;
+    if (config.visual_loop.enabled && !config.visual_loop.loaded_vocabulary &&
+        !io::LoadVisualLoopVocabulary(&config.visual_loop, &error)) {
+      std::fprintf(stderr, "fusemap_offline: --visual-loop: %s\n", error.c_str());
+      return 2;
+    }
+  }
   // Read before the run, so a bad file does not cost one.
   std::vector<eval::Relation> relations;
   std::string stamp_map_summary;
@@ -148,7 +156,8 @@ int Run(const Args& args) {
     } else if (event.channel == config.channels.imu) {
       channel = kImu;
       decoded = io::DecodeImu(event.data.data(), size, &message.emplace<sensor::ImuData>(), &error);
-    } else if (session.cloud_stage() != nullptr && event.channel == config.channels.rgbd) {
+    } else if ((session.cloud_stage() != nullptr || session.visual_stage() != nullptr) &&
+               event.channel == config.channels.rgbd) {
       channel = kRgbd;
       decoded = io::DecodeRgbdFrame(event.data.data(), size,
                                     &message.emplace<sensor::RgbdFrame>(), &error);
@@ -285,6 +294,10 @@ int Run(const Args& args) {
                     : *std::max_element(cost.update_ms.begin(), cost.update_ms.end()),
                 cost.final_update_ms, cost.final_update_regions, cost.final_update_points,
                 static_cast<long long>(c.rebuilt_points_total));
+  }
+  if (session.visual_stage() != nullptr) {
+    std::printf("%s\n", session::VisualSummaryLine(session.visual_stage()->stats()).c_str());
+    std::printf("wrote %sloops.tsv\n", out.c_str());
   }
   if (!calibration_note.empty()) std::printf("%s\n", calibration_note.c_str());
   if (!args.relations.empty()) {

@@ -1,6 +1,7 @@
 #ifndef FUSEMAP_TOOLS_OFFLINE_OFFLINE_RUN_H_
 #define FUSEMAP_TOOLS_OFFLINE_OFFLINE_RUN_H_
 
+#include <optional>
 #include <string>
 
 namespace fusemap {
@@ -11,6 +12,8 @@ struct Args {
   std::string log, config, out;
   bool loop_closure = true;
   bool cloud = true;
+  // Overrides visual_loop.enabled when set (--visual-loop / --no-visual-loop).
+  std::optional<bool> visual_loop;
   int threads = 1;
   bool quiet = false;
   std::string relations;

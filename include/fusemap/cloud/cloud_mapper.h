@@ -48,6 +48,10 @@ struct CloudMapperOptions {
 // frame's parent), octomap_resolution_m, frame, sync, binder, laser_free_space.
 CloudMapperOptions ParseCloudMapperOptions(common::ConfigReader& reader);
 
+// The camera's mount on the robot base for `frame`: the configured one with
+// override_extrinsic, else the one the frame carries.
+common::Rigid3d CameraExtrinsic(const CloudMapperOptions& options, const sensor::RgbdFrame& frame);
+
 struct CloudMapperStats {
   int64_t frames_in = 0;
   int64_t frames_bound = 0;

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "fusemap/cloud/cloud_types.h"
 #include "fusemap/common/config_reader.h"
@@ -49,6 +50,13 @@ struct FrameCloudStats {
 // `stats` may be null.
 CameraCloud BuildFrameCloud(const sensor::RgbdFrame& frame, const FrameCloudOptions& options,
                             FrameCloudStats* stats);
+
+// The depth image registered to the colour camera by the same projection (metres, row-major,
+// colour width x height; 0 where no depth in [min_range_m, max_range_m] lands, the nearest
+// where several do): what an image-feature consumer (the visual loop checker) pairs with the
+// colour image. Empty if the frame lacks images or intrinsics.
+std::vector<float> RegisterDepthImage(const sensor::RgbdFrame& frame, double min_range_m,
+                                      double max_range_m);
 
 }  // namespace cloud
 }  // namespace fusemap

@@ -25,9 +25,8 @@ bool ReadSubmapAnchors(std::istream& in, const std::string& origin,
 bool ReadSubmapAnchorsFile(const std::string& path, std::vector<eval::SubmapAnchor>* submaps,
                            std::string* error);
 
-// Writers of the same layouts (with a header line; yaw in radians, 9 significant digits).
-bool WriteLoopsFile(const std::string& path, const std::vector<eval::LoopRecord>& loops,
-                    std::string* error);
+// Writes the submaps.tsv layout (with a header line; yaw in radians, 9 significant digits).
+// loops.tsv is written by io::WriteLoopsTsv (loops_file.h).
 bool WriteSubmapAnchorsFile(const std::string& path, const std::vector<eval::SubmapAnchor>& submaps,
                             std::string* error);
 

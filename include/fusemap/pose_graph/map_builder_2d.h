@@ -51,6 +51,9 @@ class MapBuilder2D {
     // matched against), by pose-graph index, with its fixed local pose; -1 if none yet.
     int submap_id = -1;
     common::Rigid2d T_local_submap;
+    // The pose-graph node this scan became, or if it was not inserted the newest node before
+    // it; -1 before the first.
+    int node = -1;
   };
   // Empty if the scan was unusable.
   std::optional<ScanResult> AddScan(const sensor::LaserScan& scan);
@@ -78,6 +81,7 @@ class MapBuilder2D {
  private:
   mapping::LocalTrajectoryBuilder2D local_;
   PoseGraph2D pose_graph_;
+  int newest_node_ = -1;  // ScanResult::node
 };
 
 // Poses at every odometry sample (how Kümmerle et al. 2009 evaluate between-node times): the

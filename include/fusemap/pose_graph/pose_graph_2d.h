@@ -5,6 +5,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,27 @@ struct PendingSearch2D {
 };
 
 struct PoseGraphState2D;
+
+// A laser loop closure the graph accepted (PoseGraph2D::TakeNewLoopClosures).
+struct LoopClosure2D {
+  int id = -1;  // Constraint2D::loop_id
+  int node = 0;
+  int submap = 0;
+  common::Rigid2d T_submap_node;
+  double laser_score = 0.0;
+};
+
+// A loop constraint measured outside the graph (the visual loop checker): node in submap,
+// with its weights (residual = weights .* error, as Constraint2D) and what measured it.
+struct ExternalLoopConstraint2D {
+  int node = 0;
+  int submap = 0;
+  common::Rigid2d T_submap_node;
+  double translation_weight = 1.0;
+  double rotation_weight = 1.0;
+  Constraint2D::Source source = Constraint2D::kVisual;
+  double laser_score = 0.0;  // with source kLaser
+};
 
 // A trimmed node with its final pose (PoseGraph2D::TrimmedNodes).
 struct ArchivedNode2D {
@@ -135,6 +157,32 @@ class PoseGraph2D {
   // The index of a submap a node was inserted into, or -1 if no node has reached it yet.
   int SubmapIndex(const mapping::Submap2D* submap) const;
   Stats stats() const;
+
+  // Loop constraints by id, for a second opinion on laser loops (session::VisualStage). All
+  // take effect in the next optimisation, as a laser closure found by a search does.
+  //
+  // From now on, remember the laser loop closures accepted, for TakeNewLoopClosures (off by
+  // default: without a taker the list would grow for the whole run).
+  void ReportLoopClosures();
+  // The laser loop closures accepted since the previous call, oldest first; ones removed or
+  // trimmed meanwhile are left out.
+  std::vector<LoopClosure2D> TakeNewLoopClosures();
+  // Adds a loop closure; returns its id, or -1 if the node or the submap is gone (trimmed) or
+  // was never added, or the node was inserted into that submap. One with source kLaser (a
+  // laser loop found elsewhere) is reported by TakeNewLoopClosures like a search's.
+  int AddLoopConstraint(const ExternalLoopConstraint2D& constraint);
+  // Replaces the measurement, weights and source of loop closure `id` (its node and submap
+  // stay); false if it is gone.
+  bool ReplaceLoopConstraint(int id, const ExternalLoopConstraint2D& constraint);
+  // Changes only what loop closure `id` is attributed to; false if it is gone.
+  bool SetLoopConstraintSource(int id, Constraint2D::Source source);
+  // Takes loop closure `id` out of the graph; false if it is gone.
+  bool RemoveLoopConstraint(int id);
+  // The loop closures (accepted or candidates) in the graph now.
+  std::vector<Constraint2D> LoopConstraints() const;
+  // Where node `node` stands in submap `submap` by the current global estimate
+  // (T_map_submap^-1 * T_map_node); empty if either is gone or unknown.
+  std::optional<common::Rigid2d> T_submap_node(int submap, int node) const;
 
   // A consistent copy of the graph, taken under the lock without waiting for background
   // work: searches, precomputations and an optimisation still running are recorded and redone
@@ -220,6 +268,14 @@ class PoseGraph2D {
   // Searches handed to the executor and not yet finished, by a running id.
   std::map<std::uint64_t, PendingSearch2D> searches_in_flight_;  // guarded by mutex_
   std::uint64_t next_search_id_ = 0;                             // guarded by mutex_
+  // The loop-constraint API (pose_graph_2d_loops.cc).
+  int next_loop_id_ = 0;                  // guarded by mutex_
+  bool report_loop_closures_ = false;     // guarded by mutex_
+  std::vector<int> new_loop_closures_;    // guarded by mutex_, ids
+  // The loop closure with `id`, or null.
+  Constraint2D* FindLoopLocked(int id);
+  // Records an accepted laser loop closure for TakeNewLoopClosures.
+  void NoteAcceptedLocked(const Constraint2D& constraint);
 };
 
 // Everything PoseGraph2D holds besides its options and the submap grids, as plain values
@@ -252,6 +308,7 @@ struct PoseGraphState2D {
   int finished_submaps_at_last_trim = 0;
   std::uint64_t solve_count = 0;
   PoseGraph2D::Stats stats;
+  int next_loop_id = 0;  // the next Constraint2D::loop_id
 };
 
 }  // namespace pose_graph

@@ -16,6 +16,9 @@ namespace pose_graph {
 // kLoopClosureCandidate: a match waiting for loop-closure verification; not optimised.
 struct Constraint2D {
   enum Tag { kIntraSubmap, kInterSubmap, kLoopClosureCandidate };
+  // What measured a loop closure: the laser matcher, the visual loop checker (forced or
+  // overriding a laser one), or a laser match the camera confirmed. Intra-submap ones: kLaser.
+  enum Source { kLaser, kVisual, kBoth };
 
   int submap = 0;
   int node = 0;
@@ -23,6 +26,10 @@ struct Constraint2D {
   double translation_weight = 1.0;
   double rotation_weight = 1.0;
   Tag tag = kIntraSubmap;
+  Source source = kLaser;
+  // Loop closures (and candidates): a stable id, PoseGraph2D's handle for them; -1 otherwise.
+  int loop_id = -1;
+  double laser_score = 0.0;  // the laser matcher's score, laser loop closures only
 };
 
 // Odometry or local-SLAM relative motion between two nodes (usually consecutive ones).

@@ -21,6 +21,9 @@ struct CloudPoseUpdate {
   double stamp_s = 0.0;
   common::Rigid2d T_local_tracking;
   common::Rigid2d T_local_submap;
+  // The pose-graph node of the scan, or the newest before it (MapBuilder2D::ScanResult::node):
+  // what the visual loop checker tags its keyframes with.
+  int node_id = -1;
 
   bool empty() const { return placements.empty() && submap_id < 0; }
 };

@@ -9,6 +9,7 @@
 #include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/sensor/sensor_types.h"
+#include "fusemap/visual_loop/loop_arbiter.h"
 
 namespace fusemap {
 namespace session {
@@ -28,6 +29,8 @@ struct RunOutputs {
   // Optional (fusemapd): what the run moved out of memory; the trajectory files then cover the
   // archived nodes and odometry as well as the builder's nodes and `odometry`.
   const io::TrajectoryArchive* archive = nullptr;
+  // Optional (with the visual loop checker): its decisions, written to DIR/loops.tsv.
+  const std::vector<visual_loop::ArbitrationRecord>* loop_records = nullptr;
 };
 
 struct RunOutputsReport {
@@ -42,7 +45,8 @@ struct RunOutputsReport {
 // pose_graph::DensifyWithOdometry), DIR/nodes.tum, DIR/odometry.tum (the odometry input),
 // DIR/map.pgm + DIR/map.yaml (map_server), DIR/map.png (map with trajectory) and, with RGB-D
 // frames bound, DIR/cloud.ply, DIR/cloud.pcd, DIR/cloud_removed.ply (points removed as
-// dynamic), DIR/octomap.bt, DIR/octomap.ot and DIR/cloud.png (an oblique rendering).
+// dynamic), DIR/octomap.bt, DIR/octomap.ot and DIR/cloud.png (an oblique rendering); with
+// loop_records, DIR/loops.tsv (io::WriteLoopsTsv).
 bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsReport* report,
                      std::string* error);
 

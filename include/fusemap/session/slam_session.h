@@ -15,6 +15,7 @@
 #include "fusemap/sensor/sensor_types.h"
 #include "fusemap/session/cloud_stage.h"
 #include "fusemap/session/run_outputs.h"
+#include "fusemap/session/visual_stage.h"
 
 namespace fusemap {
 namespace session {
@@ -29,9 +30,20 @@ namespace session {
 // after every scan: by default straight to the session's own CloudStage, on the caller's
 // thread; with SetCloudSink, to whoever the sink gives it to (fusemapd's RGB-D thread), which
 // then alone calls cloud_stage().
+//
+// With config.visual_loop.enabled the session also has a visual stage (the ORB visual loop
+// checker, session::VisualStage) fed with the same pose updates and the RGB-D frames: inline
+// by default (AddRgbdFrame, deterministic with an InlineExecutor); with SetVisualSink, the
+// updates go to the sink and whoever owns the sink (fusemapd's visual thread) feeds
+// visual_stage() the frames. Its forced and overriding constraints enter the final
+// optimisation: Finish() waits for the stage to finish first.
 class SlamSession {
  public:
   using CloudSink = std::function<void(CloudPoseUpdate&&)>;
+  struct VisualSink {
+    std::function<void(const CloudPoseUpdate&)> update;  // must not block
+    std::function<void()> finish;  // returns once visual_stage()->Finish() has run
+  };
 
   // `executor` runs loop-closure searches and optimisations; an InlineExecutor makes runs
   // bit-for-bit reproducible. With config.cloud.enabled the session has a cloud stage;
@@ -51,15 +63,18 @@ class SlamSession {
   }
   // Before any input: where cloud updates go instead of the session's own cloud stage.
   void SetCloudSink(CloudSink sink) { cloud_sink_ = std::move(sink); }
+  // Before any input: where visual-stage updates go instead of the session's own stage.
+  void SetVisualSink(VisualSink sink) { visual_sink_ = std::move(sink); }
 
   std::optional<pose_graph::MapBuilder2D::ScanResult> AddScan(const sensor::LaserScan& scan);
   // False (and nothing recorded) for odometry older than the record's newest sample.
   bool AddOdometry(const sensor::OdometryData& odometry);
   void AddImu(const sensor::ImuData& imu);
-  // To the session's own cloud stage; ignored without one or with a cloud sink.
+  // To the session's own cloud and visual stages; each ignored without one or with its sink.
   void AddRgbdFrame(const sensor::RgbdFrame& frame);
-  // End of input: the final optimisation, and the cloud's last update (to the sink, which
-  // then finishes its cloud stage with it; otherwise the session finishes its own).
+  // End of input: the visual stage's last decisions (after the executor's pending searches),
+  // the final optimisation, and the cloud's last update (to the sink, which then finishes its
+  // cloud stage with it; otherwise the session finishes its own).
   void Finish();
 
   // Moves the trimmed nodes and the odometry record into the archive (no-op without one).
@@ -78,10 +93,14 @@ class SlamSession {
   // Null without config.cloud.enabled.
   CloudStage* cloud_stage() { return cloud_stage_.get(); }
   const CloudStage* cloud_stage() const { return cloud_stage_.get(); }
+  // Null without config.visual_loop.enabled.
+  VisualStage* visual_stage() { return visual_stage_.get(); }
+  const VisualStage* visual_stage() const { return visual_stage_.get(); }
   const io::SlamConfig& config() const { return config_; }
 
  private:
   void SendToCloud(CloudPoseUpdate&& update);
+  void MakeVisualStage();
 
   const io::SlamConfig config_;
   common::Executor* const executor_;
@@ -90,6 +109,8 @@ class SlamSession {
   std::unique_ptr<io::TrajectoryArchive> archive_;
   std::unique_ptr<CloudStage> cloud_stage_;
   CloudSink cloud_sink_;
+  std::unique_ptr<VisualStage> visual_stage_;
+  VisualSink visual_sink_;
 };
 
 }  // namespace session

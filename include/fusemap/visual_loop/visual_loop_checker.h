@@ -85,6 +85,7 @@ class VisualLoopChecker {
 
   struct FrameResult {
     bool keyframe = false;  // the frame was kept
+    int keyframe_id = -1;   // its id, when kept
     std::optional<VisualLoopConstraint> loop;
     std::string rejection;  // why a candidate was refused, if one was
   };

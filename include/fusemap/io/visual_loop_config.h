@@ -1,0 +1,63 @@
+#ifndef FUSEMAP_IO_VISUAL_LOOP_CONFIG_H_
+#define FUSEMAP_IO_VISUAL_LOOP_CONFIG_H_
+
+#include <memory>
+#include <string>
+
+#include "fusemap/common/config_reader.h"
+#include "fusemap/visual_loop/loop_arbiter.h"
+#include "fusemap/visual_loop/visual_loop_checker.h"
+#include "fusemap/visual_loop/vocabulary.h"
+
+namespace fusemap {
+namespace io {
+
+// The `visual_loop:` section: the ORB visual loop checker beside the laser loop closure
+// (session::VisualStage). Off by default.
+struct VisualLoopConfig {
+  bool enabled = false;
+  // As written: absolute, or relative to the source tree (FUSEMAP_SOURCE_DIR).
+  std::string vocabulary = "data/vocabulary/orb_k10_l4.bin";
+  // Loaded when enabled (ParseVisualLoopConfig); shared by copies of the config.
+  std::shared_ptr<const visual_loop::Vocabulary> loaded_vocabulary;
+  visual_loop::VisualLoopCheckerOptions checker;
+  visual_loop::ArbitrationOptions arbitration;
+  // Weights of the loop constraints the checker adds or substitutes (as the laser ones,
+  // global_slam.constraint_builder.loop_closure_*_weight, by default).
+  double translation_weight = 1.1e4;
+  double rotation_weight = 1e5;
+  // A laser loop of node N is checked against the keyframe nearest N only if that keyframe's
+  // node is at most this many nodes away; a visual loop and a laser loop are one pair when
+  // their nodes are this close (and the submap is the same).
+  int max_node_gap = 5;
+  // Frames waiting for a laser pose newer than themselves; beyond this the oldest is dropped.
+  int max_pending_frames = 16;
+  // fusemapd: frames queued for the checker's own thread; when full the oldest is dropped.
+  int max_queue_frames = 8;
+
+  // Each field's rule, against its key (see common::OptionChecker).
+  void Check(common::OptionChecker* check) const;
+  bool IsValid(std::string* error) const;
+};
+
+// The vocabulary path as given, or resolved against the source tree if relative.
+std::string ResolveVocabularyPath(const std::string& path);
+// Loads config->vocabulary into config->loaded_vocabulary (for a config enabled after parsing,
+// e.g. by a command-line flag); false with the reason otherwise.
+bool LoadVisualLoopVocabulary(VisualLoopConfig* config, std::string* error);
+
+// Keys: enabled, vocabulary, translation_weight, rotation_weight, max_node_gap,
+// max_pending_frames, max_queue_frames, keyframes (min_translation_m, min_rotation_rad,
+// max_interval_s, min_interval_s, max_features, min_depth_m, max_depth_m), recognition
+// (num_recent_excluded, min_normalized_score, temporal_consistency, island_gap), verification
+// (min_inliers, pnp_threshold_px, max_mean_reprojection_px, min_occupied_cells), planar
+// (max_roll_pitch_rad, max_height_m), contradiction (min_points, max_overlap_distance_m,
+// max_overlap_yaw_rad, max_inliers), arbitration (max_translation_disagreement_m,
+// max_rotation_disagreement_rad). With enabled, a vocabulary that cannot be loaded is an error
+// against the `vocabulary` key.
+VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader);
+
+}  // namespace io
+}  // namespace fusemap
+
+#endif  // FUSEMAP_IO_VISUAL_LOOP_CONFIG_H_

@@ -1,0 +1,343 @@
+#include "fusemap/session/visual_stage.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <set>
+
+#include <opencv2/imgproc.hpp>
+
+#include "fusemap/cloud/frame_cloud.h"
+
+namespace fusemap {
+namespace session {
+namespace {
+
+pose_graph::Constraint2D::Source ToGraphSource(visual_loop::LoopSource source) {
+  switch (source) {
+    case visual_loop::LoopSource::kLaser:
+      return pose_graph::Constraint2D::kLaser;
+    case visual_loop::LoopSource::kVisual:
+      return pose_graph::Constraint2D::kVisual;
+    case visual_loop::LoopSource::kBoth:
+      break;
+  }
+  return pose_graph::Constraint2D::kBoth;
+}
+
+}  // namespace
+
+visual_loop::CameraFrame ToCameraFrame(const sensor::RgbdFrame& frame,
+                                       const cloud::CloudMapperOptions& camera,
+                                       const visual_loop::KeyframeOptions& depth_range) {
+  visual_loop::CameraFrame out;
+  out.stamp_s = frame.stamp_s;
+  const sensor::PinholeIntrinsics& k = frame.color_intrinsics;
+  if (k.width <= 0 || k.height <= 0 || !(k.fx > 0.0) || !(k.fy > 0.0) ||
+      frame.color_rgb.size() < 3 * static_cast<size_t>(k.width) * static_cast<size_t>(k.height)) {
+    return out;
+  }
+  const cv::Mat rgb(k.height, k.width, CV_8UC3, const_cast<uint8_t*>(frame.color_rgb.data()));
+  cv::cvtColor(rgb, out.image, cv::COLOR_RGB2GRAY);
+  std::vector<float> depth_m =
+      cloud::RegisterDepthImage(frame, depth_range.min_depth_m, depth_range.max_depth_m);
+  if (!depth_m.empty()) out.depth_m = cv::Mat(k.height, k.width, CV_32FC1, depth_m.data()).clone();
+  out.intrinsics = k;
+  out.T_base_camera = cloud::CameraExtrinsic(camera, frame);
+  return out;
+}
+
+std::string VisualSummaryLine(const VisualStageStats& s) {
+  char line[400];
+  std::snprintf(line, sizeof(line),
+                "visual_loop: keyframes=%d candidates=%d verified=%d refused=%d "
+                "laser_loops_checked=%d laser_confirmed=%d visual_override=%d visual_forced=%d "
+                "laser_kept=%d laser_rejected=%d frames_in=%lld frames_offered=%lld "
+                "frames_dropped=%lld",
+                s.checker.keyframes, s.checker.candidates, s.checker.verified, s.checker.rejected,
+                s.laser_loops_checked, s.confirmed, s.overridden, s.forced, s.kept, s.rejected,
+                static_cast<long long>(s.frames_in), static_cast<long long>(s.frames_offered),
+                static_cast<long long>(s.frames_dropped_no_pose + s.frames_dropped_pending));
+  return line;
+}
+
+VisualStage::VisualStage(const io::VisualLoopConfig& config,
+                         const cloud::CloudMapperOptions& camera, pose_graph::PoseGraph2D* graph)
+    : config_(config),
+      camera_(camera),
+      graph_(graph),
+      checker_(config.checker, config.loaded_vocabulary),
+      interpolator_(camera.sync) {
+  assert(config_.loaded_vocabulary != nullptr);
+  graph_->ReportLoopClosures();
+}
+
+void VisualStage::Apply(const CloudPoseUpdate& update) {
+  if (update.submap_id < 0) return;
+  if (!interpolator_.AddPose(update.stamp_s, update.T_local_tracking)) return;
+  // A scan that was not inserted keeps the node before it; the node's own pose is that of the
+  // scan that made it.
+  const bool same_node = !bindings_.empty() && bindings_.back().node == update.node_id;
+  bindings_.push_back({update.stamp_s, update.node_id, update.submap_id,
+                       same_node ? bindings_.back().T_local_node : update.T_local_tracking});
+  while (bindings_.size() > 1 && bindings_[1].stamp_s < interpolator_.oldest_stamp_s()) {
+    bindings_.pop_front();
+  }
+  newest_stamp_s_ = std::max(newest_stamp_s_, update.stamp_s);
+  newest_node_ = std::max(newest_node_, update.node_id);
+  ProcessPending();
+  ProcessLaserLoops(false);
+}
+
+void VisualStage::AddFrame(const sensor::RgbdFrame& frame) {
+  ++stats_.frames_in;
+  // The checker never keeps frames closer than this; skip them before they cost a decode.
+  if (frame.stamp_s - last_keyframe_stamp_s_ < config_.checker.selector.min_interval_s) return;
+  if (static_cast<int>(pending_.size()) >= config_.max_pending_frames) {
+    pending_.pop_front();
+    ++stats_.frames_dropped_pending;
+  }
+  pending_.push_back(frame);
+  ProcessPending();
+}
+
+void VisualStage::Finish() {
+  finished_ = true;
+  ProcessPending();
+  ProcessLaserLoops(true);
+}
+
+void VisualStage::ProcessPending() {
+  while (!pending_.empty()) {
+    const sensor::RgbdFrame& frame = pending_.front();
+    // After the end of input no later pose will come, so waiting is pointless.
+    const double now_s = finished_ ? frame.stamp_s + camera_.sync.hold_s + 1.0 : newest_stamp_s_;
+    const cloud::PoseInterpolator::Result result = interpolator_.Lookup(frame.stamp_s, now_s);
+    if (result.status == cloud::PoseInterpolator::Status::kWait) return;
+    if (result.status == cloud::PoseInterpolator::Status::kReady) {
+      Offer(frame, result.T_local_tracking);
+    } else {
+      ++stats_.frames_dropped_no_pose;
+    }
+    pending_.pop_front();
+  }
+}
+
+const VisualStage::Binding* VisualStage::BindingAt(double stamp_s) const {
+  const auto it = std::upper_bound(
+      bindings_.begin(), bindings_.end(), stamp_s,
+      [](double stamp, const Binding& binding) { return stamp < binding.stamp_s; });
+  if (it == bindings_.begin()) return bindings_.empty() ? nullptr : &bindings_.front();
+  return &*std::prev(it);
+}
+
+void VisualStage::Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base) {
+  const Binding* binding = BindingAt(frame.stamp_s);
+  if (binding == nullptr || binding->node < 0) {
+    ++stats_.frames_dropped_no_pose;
+    return;
+  }
+  if (frame.stamp_s - last_keyframe_stamp_s_ < config_.checker.selector.min_interval_s) return;
+  const visual_loop::CameraFrame camera_frame =
+      ToCameraFrame(frame, camera_, config_.checker.keyframe);
+  if (camera_frame.image.empty()) {
+    ++stats_.frames_unusable;
+    return;
+  }
+  ++stats_.frames_offered;
+  newest_offered_node_ = std::max(newest_offered_node_, binding->node);
+  const visual_loop::VisualLoopChecker::FrameResult result =
+      checker_.AddFrame(camera_frame, T_local_base, binding->node, binding->submap);
+  if (!result.keyframe) return;
+  last_keyframe_stamp_s_ = frame.stamp_s;
+  keyframes_[result.keyframe_id] = {binding->node, binding->submap,
+                                    binding->T_local_node.inverse() * T_local_base};
+  if (result.loop) HandleVisualLoop(*result.loop);
+  ReleaseTrimmedSubmaps();
+}
+
+std::optional<common::Rigid2d> VisualStage::T_submap_base(int submap, int id) const {
+  const auto it = keyframes_.find(id);
+  if (it == keyframes_.end()) return std::nullopt;
+  const std::optional<common::Rigid2d> T_submap_node = graph_->T_submap_node(submap, it->second.node);
+  if (!T_submap_node) return std::nullopt;
+  return *T_submap_node * it->second.T_node_base;
+}
+
+std::optional<visual_loop::LoopMeasurement2D> VisualStage::ForNode(
+    const visual_loop::LoopMeasurement2D& base_measurement, int id, int submap, int node) const {
+  // The keyframe's base relative to `node` by the current estimate: they are at most a few
+  // nodes apart, over which the estimate is local SLAM's own motion.
+  const std::optional<common::Rigid2d> T_submap_base_estimate = T_submap_base(submap, id);
+  const std::optional<common::Rigid2d> T_submap_node = graph_->T_submap_node(submap, node);
+  if (!T_submap_base_estimate || !T_submap_node) return std::nullopt;
+  const common::Rigid2d T_node_base = T_submap_node->inverse() * *T_submap_base_estimate;
+  visual_loop::LoopMeasurement2D measurement = base_measurement;
+  measurement.T_submap_node = base_measurement.T_submap_node * T_node_base.inverse();
+  return measurement;
+}
+
+void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop) {
+  const int submap = loop.match_submap;
+  const std::optional<common::Rigid2d> T_submap_match_base =
+      T_submap_base(submap, loop.match_keyframe);
+  const auto query = keyframes_.find(loop.query_keyframe);
+  if (!T_submap_match_base || query == keyframes_.end()) return;
+  const visual_loop::LoopMeasurement2D base_measurement =
+      visual_loop::ToSubmapMeasurement(*T_submap_match_base, loop);
+  // A laser loop of the same pair (the nearest node within max_node_gap) is arbitrated against
+  // this one; without one the visual loop is forced.
+  const int query_node = query->second.node;
+  std::optional<pose_graph::Constraint2D> laser;
+  for (const pose_graph::Constraint2D& c : graph_->LoopConstraints()) {
+    if (c.submap != submap || c.source != pose_graph::Constraint2D::kLaser ||
+        c.tag != pose_graph::Constraint2D::kInterSubmap ||
+        std::abs(c.node - query_node) > config_.max_node_gap) {
+      continue;
+    }
+    if (!laser || std::abs(c.node - query_node) < std::abs(laser->node - query_node)) laser = c;
+  }
+  const int node = laser ? laser->node : query_node;
+  const std::optional<visual_loop::LoopMeasurement2D> visual =
+      ForNode(base_measurement, loop.query_keyframe, submap, node);
+  if (!visual) return;
+  std::optional<visual_loop::LoopMeasurement2D> laser_measurement;
+  if (laser) {
+    laser_measurement = visual_loop::LoopMeasurement2D{laser->T_submap_node,
+                                                       Eigen::Matrix3d::Identity(),
+                                                       laser->laser_score, 0};
+    const int id = laser->loop_id;
+    laser_loops_.erase(std::remove_if(laser_loops_.begin(), laser_loops_.end(),
+                                      [id](const pose_graph::LoopClosure2D& l) { return l.id == id; }),
+                       laser_loops_.end());
+  }
+  Apply(visual_loop::ArbitrateLoop(node, submap, laser_measurement, visual,
+                                   visual_loop::VisualCheck::kVerified, config_.arbitration),
+        laser ? laser->loop_id : -1);
+}
+
+void VisualStage::ProcessLaserLoops(bool all) {
+  for (const pose_graph::LoopClosure2D& loop : graph_->TakeNewLoopClosures()) {
+    laser_loops_.push_back(loop);
+  }
+  // A loop's place has been seen once frames past its node were offered; without frames (no
+  // camera, or the camera lags) it is judged after 2 * max_node_gap more nodes.
+  std::vector<pose_graph::LoopClosure2D> ready;
+  for (auto it = laser_loops_.begin(); it != laser_loops_.end();) {
+    if (all || it->node < newest_offered_node_ ||
+        it->node + 2 * config_.max_node_gap < newest_node_) {
+      ready.push_back(*it);
+      it = laser_loops_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  for (const pose_graph::LoopClosure2D& loop : ready) CheckLaserLoop(loop);
+}
+
+void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
+  const visual_loop::LoopMeasurement2D laser{loop.T_submap_node, Eigen::Matrix3d::Identity(),
+                                             loop.laser_score, 0};
+  std::optional<visual_loop::LoopMeasurement2D> visual;
+  visual_loop::VisualCheck check = visual_loop::VisualCheck::kNotChecked;
+  const int query = checker_.KeyframeNearestNode(loop.node);
+  const auto query_info = keyframes_.find(query);
+  const std::optional<common::Rigid2d> T_submap_node_estimate =
+      graph_->T_submap_node(loop.submap, loop.node);
+  const std::optional<common::Rigid2d> T_submap_query_estimate = T_submap_base(loop.submap, query);
+  if (query_info != keyframes_.end() && T_submap_node_estimate && T_submap_query_estimate &&
+      std::abs(query_info->second.node - loop.node) <= config_.max_node_gap) {
+    // Where the laser says the query keyframe's base stands in the submap.
+    const common::Rigid2d T_submap_query_laser =
+        loop.T_submap_node * T_submap_node_estimate->inverse() * *T_submap_query_estimate;
+    // The submap's keyframe nearest that place (a radian of turn counted as half a metre).
+    int match = -1;
+    double best_cost = 0.0;
+    common::Rigid2d expected;
+    for (int id : checker_.KeyframesOfSubmap(loop.submap)) {
+      if (id == query) continue;
+      const std::optional<common::Rigid2d> T_submap_match = T_submap_base(loop.submap, id);
+      if (!T_submap_match) continue;
+      const common::Rigid2d T_match_query = T_submap_match->inverse() * T_submap_query_laser;
+      const double cost =
+          T_match_query.translation().norm() + 0.5 * std::abs(T_match_query.angle_rad());
+      if (match < 0 || cost < best_cost) {
+        match = id;
+        best_cost = cost;
+        expected = T_match_query;
+      }
+    }
+    if (match >= 0) {
+      const visual_loop::VisualCheckResult result = checker_.CheckPlace(query, match, expected);
+      check = result.check;
+      if (result.check == visual_loop::VisualCheck::kVerified) {
+        const std::optional<common::Rigid2d> T_submap_match = T_submap_base(loop.submap, match);
+        visual = ForNode(visual_loop::ToSubmapMeasurement(*T_submap_match, *result.constraint),
+                         query, loop.submap, loop.node);
+        if (!visual) check = visual_loop::VisualCheck::kNotChecked;
+      }
+    }
+  }
+  ++stats_.laser_loops_checked;
+  Apply(visual_loop::ArbitrateLoop(loop.node, loop.submap, laser, visual, check,
+                                   config_.arbitration),
+        loop.id);
+}
+
+void VisualStage::Apply(const visual_loop::ArbitrationRecord& record, int laser_id) {
+  pose_graph::ExternalLoopConstraint2D constraint;
+  constraint.node = record.node;
+  constraint.submap = record.submap;
+  if (record.chosen) constraint.T_submap_node = record.chosen->T_submap_node;
+  constraint.translation_weight = config_.translation_weight;
+  constraint.rotation_weight = config_.rotation_weight;
+  constraint.source = ToGraphSource(record.source);
+  switch (record.decision) {
+    case visual_loop::LoopDecision::kLaserConfirmed:
+      if (!graph_->SetLoopConstraintSource(laser_id, pose_graph::Constraint2D::kBoth)) return;
+      ++stats_.confirmed;
+      break;
+    case visual_loop::LoopDecision::kVisualOverride:
+      constraint.source = pose_graph::Constraint2D::kVisual;
+      if (!graph_->ReplaceLoopConstraint(laser_id, constraint)) return;
+      ++stats_.overridden;
+      break;
+    case visual_loop::LoopDecision::kVisualForced:
+      // Refused for a node already in that submap (local SLAM ties them) or a trimmed one.
+      if (graph_->AddLoopConstraint(constraint) < 0) return;
+      ++stats_.forced;
+      break;
+    case visual_loop::LoopDecision::kLaserKept:
+      ++stats_.kept;
+      break;
+    case visual_loop::LoopDecision::kLaserRejected:
+      if (!graph_->RemoveLoopConstraint(laser_id)) return;
+      ++stats_.rejected;
+      break;
+  }
+  records_.push_back(record);
+}
+
+void VisualStage::ReleaseTrimmedSubmaps() {
+  std::set<int> submaps;
+  for (const auto& entry : keyframes_) submaps.insert(entry.second.submap);
+  const auto graph_submaps = graph_->submaps();
+  for (int s : submaps) {
+    if (s < 0 || s >= static_cast<int>(graph_submaps.size()) || graph_submaps[s]) continue;
+    checker_.RemoveSubmap(s);
+    for (auto it = keyframes_.begin(); it != keyframes_.end();) {
+      it = it->second.submap == s ? keyframes_.erase(it) : std::next(it);
+    }
+  }
+}
+
+VisualStageStats VisualStage::stats() const {
+  VisualStageStats stats = stats_;
+  stats.checker = checker_.stats();
+  return stats;
+}
+
+}  // namespace session
+}  // namespace fusemap

@@ -1,0 +1,268 @@
+#include "fusemap/session/visual_stage.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fusemap/common/math.h"
+#include "fusemap/pose_graph/pose_graph_2d.h"
+#include "fusemap/sensor/range_data_builder.h"
+#include "fusemap/sensor/voxel_filter.h"
+#include "testing/synthetic_room.h"
+#include "testing/textured_box_camera.h"
+
+namespace fusemap {
+namespace session {
+namespace {
+
+using visual_loop::LoopDecision;
+
+constexpr double kStepM = 0.15;
+const int kLoopNodes =
+    static_cast<int>(1.1 * 2.0 * common::kPi * test_world::kArcRadiusM / kStepM);
+
+common::Rigid2d TruePose(int i) { return test_world::ArcPose(i, kStepM); }
+
+io::VisualLoopConfig StageConfig() {
+  io::VisualLoopConfig config;
+  config.enabled = true;
+  std::string error;
+  EXPECT_TRUE(io::LoadVisualLoopVocabulary(&config, &error)) << error;
+  // A one-lap test drive has few keyframes: fewer excluded as recent, and a revisit is
+  // accepted after one consistent query.
+  config.checker.detector.recognition.num_recent_excluded = 10;
+  config.checker.detector.recognition.temporal_consistency = 1;
+  return config;
+}
+
+pose_graph::PoseGraphOptions2D GraphOptions() {
+  pose_graph::PoseGraphOptions2D options;
+  options.optimize_every_n_nodes = 10;
+  // No laser search: the laser loops of these tests are given (AddLoopConstraint, kLaser).
+  options.constraint_builder.max_constraint_distance_m = 1e-6;
+  return options;
+}
+
+// A lap and a bit around the synthetic room's island with local SLAM's drift of
+// pose_graph_2d_test (1 % too much translation, 0.1 deg too much yaw a step); a camera in a
+// textured box around the arc takes a frame at every scan, at the true pose.
+class VisualRun {
+ public:
+  VisualRun()
+      : graph_(GraphOptions(), &executor_),
+        camera_(2.0, 0.0, 10.0, 8.0, /*seed=*/7),
+        stage_(StageConfig(), CameraOptions(), &graph_) {}
+
+  static cloud::CloudMapperOptions CameraOptions() {
+    cloud::CloudMapperOptions options;
+    return options;
+  }
+
+  // Nodes next_node_ .. num_nodes - 1; with a camera, a frame after each scan.
+  void Drive(int num_nodes, bool with_camera = true) {
+    const std::vector<test_world::Segment> walls = test_world::Room();
+    if (!active_) {
+      mapping::SubmapsOptions submap_options;
+      submap_options.num_range_data = 10;
+      active_ = std::make_unique<mapping::ActiveSubmaps2D>(submap_options);
+    }
+    sensor::AdaptiveVoxelFilterOptions filter;
+    filter.max_length_m = 0.9f;
+    filter.min_num_points = 100;
+    for (int i = next_node_; i < num_nodes; ++i) {
+      if (i > 0) {
+        const common::Rigid2d delta = TruePose(i - 1).inverse() * TruePose(i);
+        T_local_node_ = T_local_node_ * common::Rigid2d(1.01 * delta.translation(),
+                                                      delta.angle_rad() + common::DegToRad(0.1));
+      }
+      const sensor::RangeData data = test_world::SimulateRangeData(walls, TruePose(i));
+      const auto submaps = active_->InsertRangeData(sensor::TransformRangeData(data, T_local_node_));
+      if (i == 0) first_submap_ = submaps.front();
+      const double stamp_s = 0.1 * i;
+      const int node = graph_.AddNode(stamp_s, T_local_node_,
+                                      sensor::AdaptiveVoxelFilter(data.returns, filter), submaps);
+      CloudPoseUpdate update;
+      update.stamp_s = stamp_s;
+      update.T_local_tracking = T_local_node_;
+      update.submap_id = graph_.SubmapIndex(submaps.front().get());
+      update.T_local_submap = submaps.front()->T_local_submap();
+      update.node_id = node;
+      stage_.Apply(update);
+      if (with_camera) stage_.AddFrame(camera_.Render(stamp_s, TruePose(i)));
+    }
+    next_node_ = std::max(next_node_, num_nodes);
+  }
+
+  // The true pose of `node` in submap 0 (local SLAM barely drifted while it was built).
+  common::Rigid2d TrueSubmap0Node(int node) const {
+    return first_submap_->T_local_submap().inverse() * TruePose(node);
+  }
+  // A laser loop as the search would have found it.
+  int AddLaserLoop(int node, int submap, const common::Rigid2d& T_submap_node) {
+    pose_graph::ExternalLoopConstraint2D c;
+    c.node = node;
+    c.submap = submap;
+    c.T_submap_node = T_submap_node;
+    c.translation_weight = 1.1e4;
+    c.rotation_weight = 1e5;
+    c.source = pose_graph::Constraint2D::kLaser;
+    c.laser_score = 0.7;
+    return graph_.AddLoopConstraint(c);
+  }
+  const visual_loop::ArbitrationRecord* RecordOf(int node) const {
+    const visual_loop::ArbitrationRecord* found = nullptr;
+    for (const auto& r : stage_.records()) {
+      if (r.node == node && r.laser) found = &r;
+    }
+    return found;
+  }
+  std::optional<pose_graph::Constraint2D> LoopOf(int node, int submap) const {
+    for (const auto& c : graph_.LoopConstraints()) {
+      if (c.node == node && c.submap == submap) return c;
+    }
+    return std::nullopt;
+  }
+  std::optional<pose_graph::Constraint2D> LoopById(int id) const {
+    for (const auto& c : graph_.LoopConstraints()) {
+      if (c.loop_id == id) return c;
+    }
+    return std::nullopt;
+  }
+
+  pose_graph::PoseGraph2D& graph() { return graph_; }
+  VisualStage& stage() { return stage_; }
+
+ private:
+  common::InlineExecutor executor_;
+  pose_graph::PoseGraph2D graph_;
+  test_world::TexturedBoxCamera camera_;
+  VisualStage stage_;
+  std::shared_ptr<const mapping::Submap2D> first_submap_;
+  // Drive() continues where it stopped.
+  int next_node_ = 0;
+  common::Rigid2d T_local_node_ = TruePose(0);
+  std::unique_ptr<mapping::ActiveSubmaps2D> active_;
+};
+
+double DistanceM(const common::Rigid2d& a, const common::Rigid2d& b) {
+  return (a.translation() - b.translation()).norm();
+}
+
+TEST(VisualStageTest, ToCameraFrameDecodesGreyDepthIntrinsicsAndMount) {
+  const test_world::TexturedBoxCamera camera(2.0, 0.0, 10.0, 8.0, 7);
+  const sensor::RgbdFrame frame = camera.Render(1.5, TruePose(0));
+  cloud::CloudMapperOptions options;
+  const visual_loop::CameraFrame out = ToCameraFrame(frame, options, visual_loop::KeyframeOptions());
+  ASSERT_EQ(out.image.type(), CV_8UC1);
+  ASSERT_EQ(out.depth_m.type(), CV_32FC1);
+  EXPECT_EQ(out.image.cols, 640);
+  EXPECT_EQ(out.stamp_s, 1.5);
+  EXPECT_EQ(out.image.at<uint8_t>(240, 320), frame.color_rgb[3 * (240 * 640 + 320)]);
+  EXPECT_NEAR(out.depth_m.at<float>(240, 320), 1e-3 * frame.depth_mm[240 * 640 + 320], 1e-6);
+  EXPECT_EQ(out.intrinsics.fx, 500.0);
+  EXPECT_TRUE(out.T_base_camera.translation().isApprox(frame.T_base_color.translation()));
+  // The cloud's configured mount wins over the frame's, as in the cloud stage.
+  options.override_extrinsic = true;
+  options.T_base_camera_xyz_m = {0.1, 0.0, 0.3};
+  EXPECT_NEAR(ToCameraFrame(frame, options, visual_loop::KeyframeOptions())
+                  .T_base_camera.translation()
+                  .z(),
+              0.3, 1e-12);
+  EXPECT_TRUE(ToCameraFrame(sensor::RgbdFrame(), options, visual_loop::KeyframeOptions())
+                  .image.empty());
+}
+
+// One drive covers the four paths: revisits found by appearance alone are forced; laser loops
+// given afterwards are confirmed, overridden or rejected by the camera.
+TEST(VisualStageTest, ForcedConfirmedOverriddenAndRejectedThroughThePoseGraph) {
+  VisualRun run;
+  run.Drive(kLoopNodes);
+  const VisualStageStats during = run.stage().stats();
+  std::printf("%s\n", VisualSummaryLine(during).c_str());
+  EXPECT_GT(during.checker.keyframes, 20);
+  EXPECT_GT(during.forced, 0);
+  for (const auto& r : run.stage().records()) {
+    EXPECT_EQ(r.decision, LoopDecision::kVisualForced);
+    EXPECT_EQ(r.submap, 0);
+    const auto loop = run.LoopOf(r.node, r.submap);
+    ASSERT_TRUE(loop) << "node " << r.node;
+    EXPECT_EQ(loop->source, pose_graph::Constraint2D::kVisual);
+    // The forced measurement is near the truth, not at the graph's estimate (still well off);
+    // what is left is the drift of the matched keyframe within submap 0, which the measurement
+    // is anchored to.
+    const common::Rigid2d T_submap_node_estimate = *run.graph().T_submap_node(0, r.node);
+    EXPECT_GT(DistanceM(T_submap_node_estimate, run.TrueSubmap0Node(r.node)), 0.15) << r.node;
+    EXPECT_LT(DistanceM(loop->T_submap_node, run.TrueSubmap0Node(r.node)), 0.12) << r.node;
+  }
+
+  const int last = kLoopNodes - 1;
+  // Right: confirmed. Turned 0.2 rad: overridden by the camera's measurement. A place on the
+  // far side of the lap (node 57, submap 4): the camera sees other walls there, so it is
+  // rejected.
+  const int confirmed = run.AddLaserLoop(last, 0, run.TrueSubmap0Node(last));
+  const common::Rigid2d off = run.TrueSubmap0Node(last - 2) * common::Rigid2d({0.0, 0.0}, 0.2);
+  const int overridden = run.AddLaserLoop(last - 2, 0, off);
+  const int rejected = run.AddLaserLoop(last - 4, 4, *run.graph().T_submap_node(4, 57));
+  ASSERT_GE(confirmed, 0);
+  ASSERT_GE(overridden, 0);
+  ASSERT_GE(rejected, 0);
+  run.stage().Finish();
+  const VisualStageStats after = run.stage().stats();
+  std::printf("%s\n", VisualSummaryLine(after).c_str());
+  EXPECT_EQ(after.laser_loops_checked, 3);
+
+  const auto* r = run.RecordOf(last);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->decision, LoopDecision::kLaserConfirmed) << r->reason;
+  EXPECT_EQ(run.LoopById(confirmed)->source, pose_graph::Constraint2D::kBoth);
+
+  r = run.RecordOf(last - 2);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->decision, LoopDecision::kVisualOverride) << r->reason;
+  const auto replaced = run.LoopById(overridden);
+  ASSERT_TRUE(replaced);
+  EXPECT_EQ(replaced->source, pose_graph::Constraint2D::kVisual);
+  EXPECT_LT(DistanceM(replaced->T_submap_node, run.TrueSubmap0Node(last - 2)), 0.12);
+  EXPECT_LT(std::abs(common::NormalizeAngle(
+                replaced->T_submap_node.angle_rad() - run.TrueSubmap0Node(last - 2).angle_rad())),
+            0.1);  // the laser one was 0.2 rad off
+
+  r = run.RecordOf(last - 4);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->decision, LoopDecision::kLaserRejected) << r->reason;
+  EXPECT_FALSE(run.LoopById(rejected));
+  EXPECT_EQ(after.confirmed, 1);
+  EXPECT_EQ(after.overridden, 1);
+  EXPECT_EQ(after.rejected, 1);
+}
+
+TEST(VisualStageTest, LaserLoopWhereTheCameraSawNothingIsKept) {
+  VisualRun run;
+  run.Drive(30, /*with_camera=*/false);
+  const int id = run.AddLaserLoop(29, 0, common::Rigid2d({0.2, 0.0}, 0.0));
+  ASSERT_GE(id, 0);
+  run.stage().Finish();
+  ASSERT_EQ(run.stage().records().size(), 1u);
+  EXPECT_EQ(run.stage().records()[0].decision, LoopDecision::kLaserKept);
+  EXPECT_EQ(run.LoopById(id)->source, pose_graph::Constraint2D::kLaser);
+  EXPECT_EQ(run.stage().stats().kept, 1);
+}
+
+TEST(VisualStageTest, LaserLoopsWaitForTheFramesOfTheirPlace) {
+  VisualRun run;
+  run.Drive(25);
+  // Node 24's loop is taken, but its place's frames are still to come (24 is the newest).
+  ASSERT_GE(run.AddLaserLoop(24, 0, run.TrueSubmap0Node(24) * common::Rigid2d({0.1, 0.0}, 0.0)),
+            0);
+  run.Drive(0);  // nothing new
+  EXPECT_TRUE(run.stage().records().empty());
+  run.stage().Finish();
+  EXPECT_EQ(run.stage().records().size(), 1u);
+}
+
+}  // namespace
+}  // namespace session
+}  // namespace fusemap
