@@ -39,6 +39,7 @@ checker_config=$out/checker.yaml
 value() { grep -oE "(^| )$1=[^ ]*" "$2" | tail -1 | cut -d= -f2; }
 
 rows=()
+notes=()
 for world in $worlds; do
   dir=$out/$world
   echo "== $world: simulating (seed $seed, RGB-D $rate Hz)" >&2
@@ -56,6 +57,8 @@ for world in $worlds; do
       echo "bench_vloop_sim: $offline failed on $world ($mode), see $run.txt" >&2
       exit 1
     fi
+    if grep -q "^visual_loop:" "$run.txt"; then notes+=("$world $mode $(grep "^visual_loop:" "$run.txt")"); fi
+    grep -E "^(global_slam|scans)=?" "$run.txt" | sed "s|^|$world $mode |" >&2 || true
     "$evaluate" start-end --gt "$dir/groundtruth.tum" --est "$run/trajectory.tum" > "$run.start_end.txt"
     "$evaluate" ate --se2 --gt "$dir/groundtruth.tum" --est "$run/trajectory.tum" > "$run.ate.txt"
     "$evaluate" loops --gt "$dir/groundtruth.tum" --dir "$run" --verbose > "$run.loops.txt"
@@ -69,3 +72,4 @@ done
 printf '%-9s %-8s %13s %13s %10s %6s %8s %14s %8s  %s\n' world mode start_end_m start_end_deg \
   ate_rmse_m loops accepted wrong_accepted unscored decisions
 printf '%s\n' "${rows[@]}"
+[[ ${#notes[@]} -eq 0 ]] || printf '%s\n' "${notes[@]}"
