@@ -75,6 +75,7 @@ LoopScore ScoreLoops(const std::vector<LoopRecord>& loops, const std::vector<Sub
       scored.rotation_error_deg = WrappedDeg(difference.angle_rad());
       scored.wrong = scored.translation_error_m > options.max_translation_error_m ||
                      scored.rotation_error_deg > options.max_rotation_error_deg;
+      if (scored.wrong) ++score.wrong_by_decision[loop.decision];
       if (scored.wrong && scored.accepted) ++score.wrong_accepted;
       if (scored.wrong && !scored.accepted) ++score.wrong_rejected;
     } else {

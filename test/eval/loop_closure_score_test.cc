@@ -66,6 +66,9 @@ TEST(ScoreLoopsTest, FlagsLoopsOffTheTruthAndCountsDecisions) {
   EXPECT_EQ(score.by_decision.at("laser_kept"), 2);
   EXPECT_EQ(score.by_decision.at("laser_rejected"), 1);
   EXPECT_EQ(score.by_decision.at("visual_forced"), 1);
+  EXPECT_EQ(score.wrong_by_decision.at("laser_kept"), 1);
+  EXPECT_EQ(score.wrong_by_decision.at("laser_rejected"), 1);
+  EXPECT_EQ(score.wrong_by_decision.count("visual_forced"), 0u);  // unscored
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // fusemap_eval: trajectory accuracy metrics (Kümmerle relations, ATE, RPE) over TUM files.
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -71,7 +72,7 @@ constexpr char kLoopsUsage[] =
     "  DIR/submaps.tsv (submap first_node x y yaw). A loop is wrong when its relative pose is\n"
     "  off the truth by more than --max-error-m (default 0.3) or --max-error-deg (default 3).\n"
     "  --verbose           a line per loop: node submap source decision err_m err_deg wrong\n"
-    "Prints decisions=NAME:COUNT,... then, last,\n"
+    "Prints decisions=NAME:COUNT,... and wrong_by_decision=NAME:COUNT,... then, last,\n"
     "loops=N accepted=A wrong_accepted=W wrong_rejected=R unscored=U\n";
 
 using common::CommandLine;
@@ -226,6 +227,15 @@ int RunStartEnd(int argc, char** argv) {
   return 0;
 }
 
+// "name:count,..." or "none".
+std::string CountsList(const std::map<std::string, int>& counts) {
+  std::string list;
+  for (const auto& [name, count] : counts) {
+    list += (list.empty() ? "" : ",") + name + ":" + std::to_string(count);
+  }
+  return list.empty() ? "none" : list;
+}
+
 struct LoopsArgs {
   std::string gt_path, dir;
   eval::LoopScoreOptions options;
@@ -252,11 +262,8 @@ int Loops(const LoopsArgs& args) {
                   !l.scored ? "unscored" : (l.wrong ? "yes" : "no"));
     }
   }
-  std::string decisions;
-  for (const auto& [decision, count] : score.by_decision) {
-    decisions += (decisions.empty() ? "" : ",") + decision + ":" + std::to_string(count);
-  }
-  std::printf("decisions=%s\n", decisions.empty() ? "none" : decisions.c_str());
+  std::printf("decisions=%s\n", CountsList(score.by_decision).c_str());
+  std::printf("wrong_by_decision=%s\n", CountsList(score.wrong_by_decision).c_str());
   std::printf("loops=%zu accepted=%d wrong_accepted=%d wrong_rejected=%d unscored=%d\n",
               score.loops.size(), score.accepted, score.wrong_accepted, score.wrong_rejected,
               score.unscored);

@@ -60,6 +60,7 @@ struct ScoredLoop {
 struct LoopScore {
   std::vector<ScoredLoop> loops;
   std::map<std::string, int> by_decision;
+  std::map<std::string, int> wrong_by_decision;  // scored loops off the truth, by decision
   int accepted = 0;
   int wrong_accepted = 0;
   int wrong_rejected = 0;  // wrong measurements the decision kept out of the graph
