@@ -7,6 +7,7 @@
 #include <variant>
 
 #include "fusemap/daemon/resume.h"
+#include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
 namespace daemon {
@@ -20,6 +21,9 @@ constexpr size_t kOutputQueueSize = 256;
 constexpr size_t kCloudPoseQueueSize = 1024;
 // The RGB-D thread wakes at least this often to take poses and publish changed regions.
 constexpr std::chrono::milliseconds kRgbdPoll{50};
+// Scan poses for the visual thread: minutes of them at 25 Hz; if it lags further the oldest go
+// (counted), never the SLAM thread's time.
+constexpr size_t kVisualPoseQueueSize = 4096;
 
 std::chrono::steady_clock::duration Period(double rate_hz) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -37,7 +41,12 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
       start_(std::chrono::steady_clock::now()),
       intake_(slam, options, policy, log),
       outputs_(kOutputQueueSize, OverflowPolicy::kDropOldest),
-      cloud_poses_(kCloudPoseQueueSize, OverflowPolicy::kBlock) {
+      cloud_poses_(kCloudPoseQueueSize, OverflowPolicy::kBlock),
+      visual_poses_(kVisualPoseQueueSize, OverflowPolicy::kDropOldest,
+                    [this](const session::CloudPoseUpdate&) { ++visual_poses_dropped_; }),
+      visual_frames_(static_cast<size_t>(std::max(1, slam.visual_loop.max_queue_frames)),
+                     OverflowPolicy::kDropOldest,
+                     [this](const sensor::RgbdFrame&) { ++visual_frames_dropped_; }) {
   if (num_threads > 1) {
     executor_ = std::make_unique<common::ThreadPool>(num_threads);
   } else {
@@ -46,8 +55,22 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
   session_ = std::make_unique<session::SlamSession>(slam_, executor_.get());
   session_->SetCloudSink(
       [this](session::CloudPoseUpdate&& update) { cloud_poses_.Push(std::move(update)); });
+  if (session_->visual_stage() != nullptr) {
+    auto done = std::make_shared<std::shared_future<void>>(visual_done_.get_future().share());
+    session_->SetVisualSink(
+        {[this](const session::CloudPoseUpdate& update) { visual_poses_.Push(update); },
+         [this, done] {
+           // The end of the poses; the frames end when the RGB-D thread has drained its queue.
+           visual_poses_.Close();
+           done->wait();
+         }});
+  }
   ConnectSession();
-  intake_.set_decode_rgbd(slam_.cloud.enabled);
+  intake_.set_decode_rgbd(DecodesRgbd());
+}
+
+bool Engine::DecodesRgbd() const {
+  return static_cast<bool>(rgbd_consumer_) || slam_.cloud.enabled || slam_.visual_loop.enabled;
 }
 
 void Engine::ConnectSession() {
@@ -84,7 +107,7 @@ Engine::~Engine() { Finish(); }
 
 void Engine::SetRgbdConsumer(RgbdConsumer consumer) {
   rgbd_consumer_ = std::move(consumer);
-  intake_.set_decode_rgbd(static_cast<bool>(rgbd_consumer_) || slam_.cloud.enabled);
+  intake_.set_decode_rgbd(DecodesRgbd());
 }
 
 void Engine::Start() {
@@ -98,6 +121,7 @@ void Engine::Start() {
   slam_thread_ = std::thread([this] { RunLocalSlam(); });
   publisher_thread_ = std::thread([this] { RunPublisher(); });
   rgbd_thread_ = std::thread([this] { RunRgbd(); });
+  if (session_->visual_stage() != nullptr) visual_thread_ = std::thread([this] { RunVisual(); });
 }
 
 void Engine::Finish() {
@@ -112,6 +136,7 @@ void Engine::Finish() {
   }
   slam_thread_.join();
   rgbd_thread_.join();
+  if (visual_thread_.joinable()) visual_thread_.join();
   outputs_.Close();
   publisher_thread_.join();
 }
@@ -172,9 +197,14 @@ void Engine::MaybeCheckpoint(bool force) {
 void Engine::RunRgbd() {
   using Clock = std::chrono::steady_clock;
   if (!cloud_worker_) {
+    const bool visual = session_->visual_stage() != nullptr;
     while (auto frame = intake_.rgbd_queue().Pop()) {
-      if (rgbd_consumer_ && intake_.DecodeImages(&*frame)) rgbd_consumer_(std::move(*frame));
+      if ((rgbd_consumer_ || visual) && intake_.DecodeImages(&*frame)) {
+        OfferVisualFrame(frame->frame);
+        if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
+      }
     }
+    visual_frames_.Close();
     return;
   }
   // Poses first, then at most one frame: a frame waits in the mapper for the pose after it.
@@ -189,10 +219,12 @@ void Engine::RunRgbd() {
     auto frame = intake_.rgbd_queue().PopUntil(Clock::now() + kRgbdPoll);
     if (frame && intake_.DecodeImages(&*frame)) {
       cloud_worker_->AddFrame(frame->frame);
+      OfferVisualFrame(frame->frame);
       if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
     }
     cloud_worker_->MaybePublish(Clock::now());
   }
+  visual_frames_.Close();
   while (!cloud_poses_.closed_and_drained()) {
     take_poses(Clock::now() + kRgbdPoll);
     cloud_worker_->MaybePublish(Clock::now());
@@ -200,14 +232,104 @@ void Engine::RunRgbd() {
   cloud_worker_->Finish();
 }
 
+void Engine::OfferVisualFrame(const sensor::RgbdFrame& frame) {
+  if (session_->visual_stage() == nullptr ||
+      frame.stamp_s - last_visual_frame_s_ < slam_.visual_loop.checker.selector.min_interval_s) {
+    return;
+  }
+  last_visual_frame_s_ = frame.stamp_s;
+  visual_frames_.Push(frame);
+}
+
+int Engine::RestoreVisualKeyframes(io::VisualKeyframesState state) {
+  std::lock_guard<std::mutex> lock(finish_mutex_);
+  assert(!started_);
+  session::VisualStage* stage = session_->visual_stage();
+  if (stage == nullptr) return 0;
+  const int nodes = session_->builder().pose_graph().stats().nodes;
+  auto& keyframes = state.keyframes;
+  keyframes.erase(std::remove_if(keyframes.begin(), keyframes.end(),
+                                 [nodes](const io::VisualKeyframesState::Entry& e) {
+                                   return e.saved.keyframe.node >= nodes;
+                                 }),
+                  keyframes.end());
+  const int kept = static_cast<int>(keyframes.size());
+  stage->RestoreState(std::move(state));
+  return kept;
+}
+
+void Engine::SaveVisualKeyframes(const session::VisualStage& stage) {
+  if (visual_keyframes_path_.empty()) return;
+  std::string error;
+  if (!io::WriteVisualKeyframesFile(visual_keyframes_path_, stage.ExportState(), &error)) {
+    ++checkpoint_failures_;
+    if (log_ != nullptr) log_->Report("visual keyframes", error);
+  }
+}
+
+void Engine::RunVisual() {
+  using Clock = std::chrono::steady_clock;
+  session::VisualStage* stage = session_->visual_stage();
+  const auto publish = [this, stage] {
+    std::lock_guard<std::mutex> lock(visual_mutex_);
+    visual_stats_ = stage->stats();
+    visual_records_ = stage->records().size();
+    if (!stage->records().empty()) {
+      const visual_loop::ArbitrationRecord& newest = stage->records().back();
+      newest_loop_ = {visual_loop::ToString(newest.source), visual_loop::ToString(newest.decision)};
+    }
+  };
+  // Saved on this thread, which alone owns the keyframes, on the checkpoint period.
+  const bool periodic = options_.checkpoint_period_s > 0.0;
+  const auto period = std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(periodic ? options_.checkpoint_period_s : 1.0));
+  auto next_save = Clock::now() + period;
+  int saved_keyframes = -1;
+  while (true) {
+    if (periodic && Clock::now() >= next_save) {
+      next_save = Clock::now() + period;
+      const int keyframes = stage->stats().checker.keyframes;
+      if (keyframes != saved_keyframes) SaveVisualKeyframes(*stage);
+      saved_keyframes = keyframes;
+    }
+    // Poses first (only those already queued), then at most one frame: a frame waits in the
+    // stage for the pose after it.
+    while (auto update = visual_poses_.PopUntil(Clock::now() - kRgbdPoll)) stage->Apply(*update);
+    if (!visual_frames_.closed_and_drained()) {
+      if (auto frame = visual_frames_.PopUntil(Clock::now() + kRgbdPoll)) stage->AddFrame(*frame);
+    } else if (visual_poses_.closed_and_drained()) {
+      break;
+    } else if (auto update = visual_poses_.PopUntil(Clock::now() + kRgbdPoll)) {
+      stage->Apply(*update);
+    }
+    publish();
+  }
+  stage->Finish();
+  publish();
+  SaveVisualKeyframes(*stage);
+  visual_done_.set_value();
+}
+
 void Engine::PublishSubmapsAndLoops(double stamp_s) {
   const auto snapshot = session_->builder().pose_graph().Snapshot();
   publisher_->PublishSubmapList(stamp_s, *snapshot);
   const auto stats = session_->builder().pose_graph().stats();
-  if (stats.loop_closures_found > published_loop_closures_) {
-    publisher_->PublishLoopClosure(stamp_s, stats.loop_closures_found - published_loop_closures_,
-                                   stats, stats.nodes - 1);
-    published_loop_closures_ = stats.loop_closures_found;
+  io::LoopNote note;
+  size_t visual_records = 0;
+  {
+    std::lock_guard<std::mutex> lock(visual_mutex_);
+    note = newest_loop_;
+    visual_records = visual_records_;
+  }
+  // New laser loops, or new decisions of the visual loop checker (a forced loop is no laser
+  // closure, but an event all the same).
+  if (stats.loop_closures_found > published_loop_closures_ ||
+      visual_records > published_visual_records_) {
+    publisher_->PublishLoopClosure(
+        stamp_s, std::max(0, stats.loop_closures_found - published_loop_closures_), stats,
+        stats.nodes - 1, note);
+    published_loop_closures_ = std::max(published_loop_closures_, stats.loop_closures_found);
+    published_visual_records_ = visual_records;
   }
 }
 
@@ -270,6 +392,20 @@ HealthReport Engine::Health() const {
   report.optimizations = stats.optimizations;
   report.checkpoint_failures = checkpoint_failures_;
   report.time_resets = intake_.time_resets();
+  if (session_->visual_stage() != nullptr) {
+    std::lock_guard<std::mutex> lock(visual_mutex_);
+    const session::VisualStageStats& v = visual_stats_;
+    report.visual.keyframes = v.checker.keyframes;
+    report.visual.candidates = v.checker.candidates;
+    report.visual.verified = v.checker.verified;
+    report.visual.forced = v.forced;
+    report.visual.overridden = v.overridden;
+    report.visual.rejected = v.rejected;
+    report.visual.queue_depth = static_cast<int>(visual_frames_.size());
+    // Every frame the checker lost: its thread's queue, and frames that found no pose.
+    report.visual.dropped_frames =
+        visual_frames_dropped_ + v.frames_dropped_pending + v.frames_dropped_no_pose;
+  }
   return report;
 }
 

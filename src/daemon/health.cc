@@ -75,6 +75,15 @@ std::string FormatHealth(const HealthReport& report) {
                 report.checkpoint_failures, static_cast<long long>(report.time_resets),
                 report.trimmed_submaps, report.trimmed_nodes);
   line += buffer;
+  const HealthReport::Visual& v = report.visual;
+  if (v.keyframes > 0 || v.dropped_frames > 0) {
+    std::snprintf(buffer, sizeof(buffer),
+                  " visual_keyframes=%d candidates=%d verified=%d forced=%d overridden=%d"
+                  " rejected=%d visual_q%d visual_dropped=%lld",
+                  v.keyframes, v.candidates, v.verified, v.forced, v.overridden, v.rejected,
+                  v.queue_depth, static_cast<long long>(v.dropped_frames));
+    line += buffer;
+  }
   if (skipped > 0) line += " resume_skipped=" + std::to_string(skipped);
   return line;
 }

@@ -33,10 +33,10 @@ void LcmPublisher::PublishSubmapList(double stamp_s,
 
 void LcmPublisher::PublishLoopClosure(double stamp_s, int new_loop_closures,
                                       const pose_graph::PoseGraph2D::Stats& stats,
-                                      int latest_node) {
+                                      int latest_node, const io::LoopNote& note) {
   if (lcm_ == nullptr) return;
   Send(channels_.loop_closure,
-       io::EncodeLoopClosure(stamp_s, new_loop_closures, stats, latest_node));
+       io::EncodeLoopClosure(stamp_s, new_loop_closures, stats, latest_node, note));
 }
 
 void LcmPublisher::PublishHealth(double stamp_s, const HealthReport& report) {

@@ -134,13 +134,15 @@ bool DecodeSubmapList(const void* data, int size, double* stamp_s,
 
 std::vector<uint8_t> EncodeLoopClosure(double stamp_s, int new_loop_closures,
                                        const pose_graph::PoseGraph2D::Stats& stats,
-                                       int latest_node) {
+                                       int latest_node, const LoopNote& note) {
   fusemap_lcm::loop_closure_t msg;
   msg.utime = StampToUtime(stamp_s);
   msg.new_loop_closures = new_loop_closures;
   msg.total_loop_closures = stats.loop_closures_found;
   msg.optimizations = stats.optimizations;
   msg.latest_node = latest_node;
+  msg.source = note.source;
+  msg.decision = note.decision;
   return lcm_wire::Encode(msg);
 }
 
@@ -167,6 +169,14 @@ std::vector<uint8_t> EncodeHealth(double stamp_s, const HealthReport& report) {
   msg.optimizations = report.optimizations;
   msg.checkpoint_failures = report.checkpoint_failures;
   msg.time_resets = report.time_resets;
+  msg.visual_keyframes = report.visual.keyframes;
+  msg.visual_candidates = report.visual.candidates;
+  msg.visual_verified = report.visual.verified;
+  msg.visual_forced = report.visual.forced;
+  msg.visual_overridden = report.visual.overridden;
+  msg.visual_rejected = report.visual.rejected;
+  msg.visual_queue_depth = report.visual.queue_depth;
+  msg.visual_dropped_frames = report.visual.dropped_frames;
   return lcm_wire::Encode(msg);
 }
 
@@ -183,8 +193,9 @@ bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out
     if (!cursor.SkipString()) return WireCursor::Fail("bad health_t channel name", error);
   }
   // received, dropped, malformed (int64) and queue_depth (int32) per channel; then three
-  // latencies, rss_bytes, five graph counts, checkpoint_failures and time_resets.
-  constexpr int kTailBytes = 3 * 8 + 8 + 5 * 4 + 4 + 8;
+  // latencies, rss_bytes, five graph counts, checkpoint_failures and time_resets, seven visual
+  // counts (int32) and visual_dropped_frames.
+  constexpr int kTailBytes = 3 * 8 + 8 + 5 * 4 + 4 + 8 + 7 * 4 + 8;
   if (!cursor.Skip((3 * 8 + 4) * static_cast<int64_t>(n)) || !cursor.Skip(kTailBytes)) {
     return WireCursor::Fail("truncated health_t", error);
   }
@@ -213,6 +224,14 @@ bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out
   report.optimizations = msg.optimizations;
   report.checkpoint_failures = msg.checkpoint_failures;
   report.time_resets = msg.time_resets;
+  report.visual.keyframes = msg.visual_keyframes;
+  report.visual.candidates = msg.visual_candidates;
+  report.visual.verified = msg.visual_verified;
+  report.visual.forced = msg.visual_forced;
+  report.visual.overridden = msg.visual_overridden;
+  report.visual.rejected = msg.visual_rejected;
+  report.visual.queue_depth = msg.visual_queue_depth;
+  report.visual.dropped_frames = msg.visual_dropped_frames;
   *stamp_s = UtimeToStamp(msg.utime);
   *out = std::move(report);
   return true;

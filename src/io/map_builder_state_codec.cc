@@ -139,6 +139,10 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->F64(c.rotation_weight);
     // 0 intra-submap, 1 loop closure, 2 loop-closure candidate (older files hold only 0 and 1).
     out->U8(static_cast<uint8_t>(c.tag));
+    // Format 4: what measured it (0 laser, 1 visual, 2 both), its loop id, the laser score.
+    out->U8(static_cast<uint8_t>(c.source));
+    out->I32(c.loop_id);
+    out->F64(c.laser_score);
   }
   out->U64(g.searches_in_flight.size());
   for (const auto& s : g.searches_in_flight) {
@@ -150,6 +154,7 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
   out->I32(g.nodes_since_optimization);
   out->I32(g.finished_submaps_at_last_trim);
   out->U64(g.solve_count);
+  out->I32(g.next_loop_id);
   PutStats(g.stats, out);
   PutLocal(state.local_slam, out);
   out->U64(state.active_submaps.size());
@@ -297,19 +302,29 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
       if (!DecodeRigid2d(in, &T)) return false;
     }
   }
-  if (!in->Count(49, &n)) return false;
+  if (!in->Count(62, &n)) return false;
   g.constraints.resize(n);
   for (auto& c : g.constraints) {
-    uint8_t tag = 0;
+    uint8_t tag = 0, source = 0;
     if (!in->I32(&c.submap) || !in->I32(&c.node) || !DecodeRigid2d(in, &c.T_submap_node) ||
-        !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->U8(&tag)) {
+        !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->U8(&tag) ||
+        !in->U8(&source) || !in->I32(&c.loop_id) || !in->F64(&c.laser_score)) {
       return false;
     }
     if (tag > pose_graph::Constraint2D::kLoopClosureCandidate) {
       in->Fail("constraint tag is " + std::to_string(tag) + ", not 0, 1 or 2");
       return false;
     }
+    if (source > pose_graph::Constraint2D::kBoth) {
+      in->Fail("constraint source is " + std::to_string(source) + ", not 0, 1 or 2");
+      return false;
+    }
+    if (c.loop_id < -1) {
+      in->Fail("constraint loop id " + std::to_string(c.loop_id) + " is below -1");
+      return false;
+    }
     c.tag = static_cast<pose_graph::Constraint2D::Tag>(tag);
+    c.source = static_cast<pose_graph::Constraint2D::Source>(source);
   }
   if (!in->Count(32, &n)) return false;
   g.searches_in_flight.resize(n);
@@ -320,7 +335,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   }
   if (!in->Bool(&g.optimization_pending) || !in->I32(&g.nodes_since_optimization) ||
       !in->I32(&g.finished_submaps_at_last_trim) ||
-      !in->U64(&g.solve_count) || !GetStats(in, &g.stats) || !GetLocal(in, &state->local_slam) ||
+      !in->U64(&g.solve_count) || !in->I32(&g.next_loop_id) || !GetStats(in, &g.stats) || !GetLocal(in, &state->local_slam) ||
       !in->Count(4, &n)) {
     return false;
   }

@@ -80,6 +80,9 @@ void VisualLoopConfig::Check(common::OptionChecker* check) const {
   check->Require(translation_weight > 0.0, "translation_weight", "must be > 0");
   check->Require(rotation_weight > 0.0, "rotation_weight", "must be > 0");
   check->Require(max_node_gap >= 0, "max_node_gap", "must be >= 0");
+  check->Require(max_check_distance_m > 0.0, "max_check_distance_m", "must be > 0");
+  check->Require(max_check_yaw_rad > 0.0, "max_check_yaw_rad", "must be > 0");
+  check->Require(max_check_views >= 1, "max_check_views", "must be >= 1");
   check->Require(max_pending_frames >= 1, "max_pending_frames", "must be >= 1");
   check->Require(max_queue_frames >= 1, "max_queue_frames", "must be >= 1");
   check->Nested("keyframes", KeyframeRules{checker});
@@ -117,6 +120,9 @@ VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader) {
   reader.Get("translation_weight", &config.translation_weight);
   reader.Get("rotation_weight", &config.rotation_weight);
   reader.Get("max_node_gap", &config.max_node_gap);
+  reader.Get("max_check_distance_m", &config.max_check_distance_m);
+  reader.Get("max_check_yaw_rad", &config.max_check_yaw_rad);
+  reader.Get("max_check_views", &config.max_check_views);
   reader.Get("max_pending_frames", &config.max_pending_frames);
   reader.Get("max_queue_frames", &config.max_queue_frames);
 

@@ -242,6 +242,7 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
                                              loop.laser_score, 0};
   std::optional<visual_loop::LoopMeasurement2D> visual;
   visual_loop::VisualCheck check = visual_loop::VisualCheck::kNotChecked;
+  std::string check_reason;
   const int query = checker_.KeyframeNearestNode(loop.node);
   const auto query_info = keyframes_.find(query);
   const std::optional<common::Rigid2d> T_submap_node_estimate =
@@ -252,38 +253,55 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
     // Where the laser says the query keyframe's base stands in the submap.
     const common::Rigid2d T_submap_query_laser =
         loop.T_submap_node * T_submap_node_estimate->inverse() * *T_submap_query_estimate;
-    // The submap's keyframe nearest that place (a radian of turn counted as half a metre).
-    int match = -1;
-    double best_cost = 0.0;
-    common::Rigid2d expected;
+    // The submap's keyframes nearest that place (a radian of turn counted as half a metre),
+    // within the check gate; up to max_check_views of them, nearest first. One view that
+    // verifies is the camera's answer; the loop counts as contradicted only if every view
+    // tried contradicts it (one unlucky pair must not remove a laser loop).
+    struct View {
+      double cost;
+      int id;
+      common::Rigid2d expected;
+    };
+    std::vector<View> views;
     for (int id : checker_.KeyframesOfSubmap(loop.submap)) {
       if (id == query) continue;
       const std::optional<common::Rigid2d> T_submap_match = T_submap_base(loop.submap, id);
       if (!T_submap_match) continue;
       const common::Rigid2d T_match_query = T_submap_match->inverse() * T_submap_query_laser;
-      const double cost =
-          T_match_query.translation().norm() + 0.5 * std::abs(T_match_query.angle_rad());
-      if (match < 0 || cost < best_cost) {
-        match = id;
-        best_cost = cost;
-        expected = T_match_query;
+      if (T_match_query.translation().norm() > config_.max_check_distance_m ||
+          std::abs(T_match_query.angle_rad()) > config_.max_check_yaw_rad) {
+        continue;
       }
+      views.push_back({T_match_query.translation().norm() + 0.5 * std::abs(T_match_query.angle_rad()),
+                       id, T_match_query});
     }
-    if (match >= 0) {
-      const visual_loop::VisualCheckResult result = checker_.CheckPlace(query, match, expected);
-      check = result.check;
+    std::sort(views.begin(), views.end(),
+              [](const View& a, const View& b) { return a.cost < b.cost; });
+    if (static_cast<int>(views.size()) > config_.max_check_views) views.resize(config_.max_check_views);
+    int contradicted = 0;
+    for (const View& view : views) {
+      const visual_loop::VisualCheckResult result = checker_.CheckPlace(query, view.id, view.expected);
+      check_reason = result.reason;
       if (result.check == visual_loop::VisualCheck::kVerified) {
-        const std::optional<common::Rigid2d> T_submap_match = T_submap_base(loop.submap, match);
-        visual = ForNode(visual_loop::ToSubmapMeasurement(*T_submap_match, *result.constraint),
+        visual = ForNode(visual_loop::ToSubmapMeasurement(*T_submap_base(loop.submap, view.id),
+                                                          *result.constraint),
                          query, loop.submap, loop.node);
-        if (!visual) check = visual_loop::VisualCheck::kNotChecked;
+        if (visual) break;
       }
+      contradicted += result.check == visual_loop::VisualCheck::kContradicted;
+    }
+    if (visual) {
+      check = visual_loop::VisualCheck::kVerified;
+    } else if (contradicted > 0 && contradicted == static_cast<int>(views.size())) {
+      check = visual_loop::VisualCheck::kContradicted;
     }
   }
   ++stats_.laser_loops_checked;
-  Apply(visual_loop::ArbitrateLoop(loop.node, loop.submap, laser, visual, check,
-                                   config_.arbitration),
-        loop.id);
+  visual_loop::ArbitrationRecord record =
+      visual_loop::ArbitrateLoop(loop.node, loop.submap, laser, visual, check, config_.arbitration);
+  // What the camera found, for loops.tsv.
+  if (!check_reason.empty()) record.reason += " (" + check_reason + ")";
+  Apply(record, loop.id);
 }
 
 void VisualStage::Apply(const visual_loop::ArbitrationRecord& record, int laser_id) {
@@ -331,6 +349,28 @@ void VisualStage::ReleaseTrimmedSubmaps() {
       it = it->second.submap == s ? keyframes_.erase(it) : std::next(it);
     }
   }
+}
+
+io::VisualKeyframesState VisualStage::ExportState() const {
+  io::VisualKeyframesState state;
+  state.next_keyframe_id = checker_.next_keyframe_id();
+  for (visual_loop::SavedKeyframe& saved : checker_.ExportKeyframes()) {
+    const common::Rigid2d T_node_base = keyframes_.at(saved.keyframe.id).T_node_base;
+    state.keyframes.push_back({std::move(saved), T_node_base});
+  }
+  return state;
+}
+
+void VisualStage::RestoreState(io::VisualKeyframesState state) {
+  std::vector<visual_loop::SavedKeyframe> saved;
+  for (io::VisualKeyframesState::Entry& entry : state.keyframes) {
+    const visual_loop::Keyframe& k = entry.saved.keyframe;
+    keyframes_[k.id] = {k.node, k.submap, entry.T_node_base};
+    saved.push_back(std::move(entry.saved));
+  }
+  checker_.RestoreKeyframes(std::move(saved), state.next_keyframe_id);
+  // Keyframes of submaps trimmed since they were saved go at once.
+  ReleaseTrimmedSubmaps();
 }
 
 VisualStageStats VisualStage::stats() const {

@@ -59,6 +59,13 @@ void LoopDetector::Remove(int id) {
   keyframes_.erase(it);
 }
 
+void LoopDetector::Restore(Keyframe keyframe) {
+  assert(keyframe.id > last_id_);
+  last_id_ = keyframe.id;
+  recognizer_.Add(keyframe.id, keyframe.bow);
+  keyframes_.emplace(keyframe.id, std::move(keyframe));
+}
+
 const Keyframe* LoopDetector::Find(int id) const {
   const auto it = keyframes_.find(id);
   return it == keyframes_.end() ? nullptr : &it->second;

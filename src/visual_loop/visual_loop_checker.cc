@@ -151,6 +151,24 @@ void VisualLoopChecker::RemoveSubmap(int submap) {
   }
 }
 
+std::vector<SavedKeyframe> VisualLoopChecker::ExportKeyframes() const {
+  std::vector<SavedKeyframe> saved;
+  for (const auto& [id, keyframe] : detector_.keyframes()) {
+    saved.push_back({keyframe, T_base_camera_.at(id)});
+  }
+  return saved;
+}
+
+void VisualLoopChecker::RestoreKeyframes(std::vector<SavedKeyframe> keyframes, int next_id) {
+  assert(detector_.size() == 0);
+  for (SavedKeyframe& saved : keyframes) {
+    assert(saved.keyframe.id < next_id);
+    T_base_camera_[saved.keyframe.id] = saved.T_base_camera;
+    detector_.Restore(std::move(saved.keyframe));
+  }
+  next_id_ = next_id;
+}
+
 VisualLoopCheckerStats VisualLoopChecker::stats() const {
   VisualLoopCheckerStats stats = stats_;
   stats.keyframes = detector_.size();

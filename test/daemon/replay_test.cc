@@ -80,7 +80,8 @@ class RecordingPublisher : public Publisher {
     ++submap_lists;
     last_submaps = static_cast<int>(s.T_map_submaps.size());
   }
-  void PublishLoopClosure(double, int n, const pose_graph::PoseGraph2D::Stats&, int) override {
+  void PublishLoopClosure(double, int n, const pose_graph::PoseGraph2D::Stats&, int,
+                          const io::LoopNote&) override {
     loop_closures += n;
   }
   void PublishHealth(double, const HealthReport& r) override {

@@ -156,6 +156,45 @@ TEST(CheckpointTest, LoopClosureCandidatesRoundTripAndBadTagsAreRejected) {
   EXPECT_NE(error.find("tag"), std::string::npos) << error;
 }
 
+// Loop constraints keep what measured them, their id and laser score (the visual loop
+// checker's decisions survive a resume); an unknown source is an error.
+TEST(CheckpointTest, LoopSourcesIdsAndScoresRoundTripAndBadSourcesAreRejected) {
+  CheckpointContents contents = Contents();
+  auto& constraints = contents.state.pose_graph.constraints;
+  ASSERT_FALSE(constraints.empty());
+  pose_graph::Constraint2D visual = constraints.back();
+  visual.tag = pose_graph::Constraint2D::kInterSubmap;
+  visual.source = pose_graph::Constraint2D::kVisual;
+  visual.loop_id = 41;
+  visual.laser_score = 0.625;
+  visual.rotation_weight = 98765.4321;
+  constraints.push_back(visual);
+  contents.state.pose_graph.next_loop_id = 42;
+  const std::string bytes = EncodeCheckpoint(contents, false);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  const pose_graph::Constraint2D& back = read.state.pose_graph.constraints.back();
+  EXPECT_EQ(back.source, pose_graph::Constraint2D::kVisual);
+  EXPECT_EQ(back.loop_id, 41);
+  EXPECT_EQ(back.laser_score, 0.625);
+  EXPECT_EQ(read.state.pose_graph.next_loop_id, 42);
+  EXPECT_EQ(EncodeCheckpoint(read, false), bytes);
+
+  // The source byte follows the rotation weight and the tag byte.
+  std::string payload = bytes.substr(36);
+  std::string tail;
+  ByteWriter tail_writer(&tail);
+  tail_writer.F64(visual.rotation_weight);
+  tail_writer.U8(1);
+  tail_writer.U8(1);
+  const size_t at = payload.find(tail);
+  ASSERT_NE(at, std::string::npos);
+  payload[at + 9] = 9;
+  EXPECT_FALSE(DecodeCheckpoint(Reseal(bytes, payload), "ckpt", &read, &error));
+  EXPECT_NE(error.find("source"), std::string::npos) << error;
+}
+
 TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
   CheckpointContents contents = MakeContents(true);
   // What the daemon does before each save: trimmed nodes leave the graph.

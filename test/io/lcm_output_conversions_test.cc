@@ -188,7 +188,15 @@ TEST(LcmOutputConversionsTest, LoopClosureFields) {
   legacy.total_loop_closures = 12;
   legacy.optimizations = 4;
   legacy.latest_node = 311;
+  legacy.source = "laser";
+  legacy.decision = "";
   EXPECT_EQ(bytes, Bytes(legacy));
+
+  const auto visual = DecodeGenerated<fusemap_lcm::loop_closure_t>(
+      EncodeLoopClosure(7.5, 1, stats, 312, LoopNote{"visual", "visual_forced"}));
+  EXPECT_EQ(visual.source, "visual");
+  EXPECT_EQ(visual.decision, "visual_forced");
+  EXPECT_EQ(visual.latest_node, 312);
 }
 
 TEST(LcmOutputConversionsTest, HealthFields) {
@@ -208,6 +216,7 @@ TEST(LcmOutputConversionsTest, HealthFields) {
   report.optimizations = 2;
   report.checkpoint_failures = 1;
   report.time_resets = 6;
+  report.visual = {40, 12, 9, 3, 2, 1, 5, 77};
   const std::vector<uint8_t> bytes = EncodeHealth(62.0, report);
 
   const auto msg = DecodeGenerated<fusemap_lcm::health_t>(bytes);
@@ -230,6 +239,14 @@ TEST(LcmOutputConversionsTest, HealthFields) {
   EXPECT_EQ(msg.optimizations, 2);
   EXPECT_EQ(msg.checkpoint_failures, 1);
   EXPECT_EQ(msg.time_resets, 6);
+  EXPECT_EQ(msg.visual_keyframes, 40);
+  EXPECT_EQ(msg.visual_candidates, 12);
+  EXPECT_EQ(msg.visual_verified, 9);
+  EXPECT_EQ(msg.visual_forced, 3);
+  EXPECT_EQ(msg.visual_overridden, 2);
+  EXPECT_EQ(msg.visual_rejected, 1);
+  EXPECT_EQ(msg.visual_queue_depth, 5);
+  EXPECT_EQ(msg.visual_dropped_frames, 77);
   // Field order on the wire is the .lcm file's, so re-encoding the decoded message gives the
   // same bytes.
   EXPECT_EQ(Bytes(msg), bytes);
@@ -264,6 +281,8 @@ HealthReport TwoChannelReport() {
   report.rss_bytes = 1 << 20;
   report.nodes = 40;
   report.time_resets = 1;
+  report.visual.forced = 4;
+  report.visual.dropped_frames = 9;
   return report;
 }
 
@@ -285,6 +304,8 @@ TEST(LcmOutputConversionsTest, HealthRoundTrip) {
   EXPECT_EQ(out.rss_bytes, 1 << 20);
   EXPECT_EQ(out.nodes, 40);
   EXPECT_EQ(out.time_resets, 1);
+  EXPECT_EQ(out.visual.forced, 4);
+  EXPECT_EQ(out.visual.dropped_frames, 9);
   EXPECT_EQ(EncodeHealth(stamp_s, out), bytes);
 }
 

@@ -54,7 +54,13 @@ class VisualRun {
   VisualRun()
       : graph_(GraphOptions(), &executor_),
         camera_(2.0, 0.0, 10.0, 8.0, /*seed=*/7),
-        stage_(StageConfig(), CameraOptions(), &graph_) {}
+        stage_(std::make_unique<VisualStage>(StageConfig(), CameraOptions(), &graph_)) {}
+
+  // A new stage on the same graph, continuing from `state` (a restart).
+  void RestartStage(io::VisualKeyframesState state) {
+    stage_ = std::make_unique<VisualStage>(StageConfig(), CameraOptions(), &graph_);
+    stage_->RestoreState(std::move(state));
+  }
 
   static cloud::CloudMapperOptions CameraOptions() {
     cloud::CloudMapperOptions options;
@@ -90,8 +96,8 @@ class VisualRun {
       update.submap_id = graph_.SubmapIndex(submaps.front().get());
       update.T_local_submap = submaps.front()->T_local_submap();
       update.node_id = node;
-      stage_.Apply(update);
-      if (with_camera) stage_.AddFrame(camera_.Render(stamp_s, TruePose(i)));
+      stage_->Apply(update);
+      if (with_camera) stage_->AddFrame(camera_.Render(stamp_s, TruePose(i)));
     }
     next_node_ = std::max(next_node_, num_nodes);
   }
@@ -114,7 +120,7 @@ class VisualRun {
   }
   const visual_loop::ArbitrationRecord* RecordOf(int node) const {
     const visual_loop::ArbitrationRecord* found = nullptr;
-    for (const auto& r : stage_.records()) {
+    for (const auto& r : stage_->records()) {
       if (r.node == node && r.laser) found = &r;
     }
     return found;
@@ -133,13 +139,13 @@ class VisualRun {
   }
 
   pose_graph::PoseGraph2D& graph() { return graph_; }
-  VisualStage& stage() { return stage_; }
+  VisualStage& stage() { return *stage_; }
 
  private:
   common::InlineExecutor executor_;
   pose_graph::PoseGraph2D graph_;
   test_world::TexturedBoxCamera camera_;
-  VisualStage stage_;
+  std::unique_ptr<VisualStage> stage_;
   std::shared_ptr<const mapping::Submap2D> first_submap_;
   // Drive() continues where it stopped.
   int next_node_ = 0;
@@ -237,6 +243,29 @@ TEST(VisualStageTest, ForcedConfirmedOverriddenAndRejectedThroughThePoseGraph) {
   EXPECT_EQ(after.confirmed, 1);
   EXPECT_EQ(after.overridden, 1);
   EXPECT_EQ(after.rejected, 1);
+}
+
+// A restart between the laps: the keyframes of the first lap, through the checkpoint file's
+// encoding, still close the loop.
+TEST(VisualStageTest, RestoredKeyframesStillCloseTheLoop) {
+  VisualRun run;
+  run.Drive(kLoopNodes - 12);
+  const io::VisualKeyframesState saved = run.stage().ExportState();
+  ASSERT_GT(saved.keyframes.size(), 20u);
+  io::VisualKeyframesState read;
+  std::string error;
+  ASSERT_TRUE(io::DecodeVisualKeyframes(io::EncodeVisualKeyframes(saved), "kf", &read, &error))
+      << error;
+  run.RestartStage(std::move(read));
+  EXPECT_EQ(run.stage().stats().checker.keyframes, static_cast<int>(saved.keyframes.size()));
+  run.Drive(kLoopNodes);
+  std::printf("%s\n", VisualSummaryLine(run.stage().stats()).c_str());
+  // The new stage's own counts: its loops matched keyframes it only has from the file.
+  EXPECT_GT(run.stage().stats().forced, 0);
+  for (const auto& r : run.stage().records()) {
+    EXPECT_EQ(r.submap, 0);
+    EXPECT_LT(DistanceM(r.chosen->T_submap_node, run.TrueSubmap0Node(r.node)), 0.12) << r.node;
+  }
 }
 
 TEST(VisualStageTest, LaserLoopWhereTheCameraSawNothingIsKept) {

@@ -11,7 +11,8 @@ class NullPublisher : public daemon::Publisher {
  public:
   void PublishPose(double, const common::Rigid2d&) override {}
   void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot&) override {}
-  void PublishLoopClosure(double, int, const pose_graph::PoseGraph2D::Stats&, int) override {}
+  void PublishLoopClosure(double, int, const pose_graph::PoseGraph2D::Stats&, int,
+                          const io::LoopNote&) override {}
   void PublishHealth(double, const daemon::HealthReport&) override {}
 };
 

@@ -20,6 +20,7 @@
 #include "fusemap/daemon/lcm_input.h"
 #include "fusemap/daemon/lcm_publisher.h"
 #include "fusemap/daemon/resume.h"
+#include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
 namespace {
@@ -154,6 +155,24 @@ int Run(const Args& args) {
                  resume.used_path.c_str(), resume.contents.state.pose_graph.nodes.size(),
                  resume.contents.state.submaps.size());
     resume = daemon::ResumeCheckpoint();  // the engine has its own copy now
+  }
+  if (slam.visual_loop.enabled) {
+    // The visual loop checker's keyframes live beside the checkpoint (its own thread writes
+    // them); a missing or damaged file costs the keyframes, not the resume.
+    const std::string keyframes_path = args.out + "/visual_keyframes.fmvk";
+    if (args.resume) {
+      io::VisualKeyframesState keyframes;
+      if (io::ReadVisualKeyframesFile(keyframes_path, &keyframes, &error)) {
+        const size_t saved = keyframes.keyframes.size();
+        const int kept = engine->RestoreVisualKeyframes(std::move(keyframes));
+        std::fprintf(stderr, "fusemapd: resumed %d of %zu visual keyframes from %s\n", kept, saved,
+                     keyframes_path.c_str());
+      } else {
+        std::fprintf(stderr, "fusemapd: --resume: visual keyframes not restored: %s\n",
+                     error.c_str());
+      }
+    }
+    engine->SetVisualKeyframesFile(keyframes_path);
   }
   input.Subscribe(&engine->intake());
   engine->Start();

@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -31,10 +32,15 @@ namespace daemon {
 // optimisation on the executor (a ThreadPool, or inline on the SLAM thread with one thread:
 // then runs are bit-for-bit reproducible); a publisher thread (pose per scan, submap list at a
 // rate and after every optimisation, loop-closure events, health); an RGB-D thread that runs
-// the session's cloud stage on the pose updates the SLAM thread queues for it. Whoever owns
-// the LCM handle feeds intake().
+// the session's cloud stage on the pose updates the SLAM thread queues for it; with
+// visual_loop.enabled a visual thread that runs the session's visual stage (the ORB visual loop
+// checker, a back-end that may lag) on the same pose updates and the frames the RGB-D thread
+// hands it through a bounded queue (oldest frame dropped when full, counted): the SLAM thread
+// never waits on it. Whoever owns the LCM handle feeds intake().
 // Ownership: the SLAM thread alone calls the session's SLAM half; the RGB-D thread alone its
-// cloud stage; the other threads only read the pose graph's thread-safe snapshots and counters.
+// cloud stage; the visual thread alone its visual stage (which changes the pose graph only
+// through its thread-safe loop API); the other threads only read the pose graph's thread-safe
+// snapshots and counters, and the visual thread's published counters.
 class Engine {
  public:
   using RgbdConsumer = std::function<void(RgbdMessage&&)>;
@@ -60,6 +66,14 @@ class Engine {
   void SetTrajectoryArchive(std::unique_ptr<io::TrajectoryArchive> archive) {
     session_->SetTrajectoryArchive(std::move(archive));
   }
+  // Before Start(), with visual_loop.enabled: the visual thread writes its keyframes to `path`
+  // (io::WriteVisualKeyframesFile, atomically) every daemon.checkpoint_period_s when they
+  // changed, and at shutdown. Failures count as checkpoint failures.
+  void SetVisualKeyframesFile(const std::string& path) { visual_keyframes_path_ = path; }
+  // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
+  // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
+  // as their node indices will be given to new nodes; returns how many were kept.
+  int RestoreVisualKeyframes(io::VisualKeyframesState state);
 
   void Start();
   Intake& intake() { return intake_; }
@@ -95,10 +109,17 @@ class Engine {
   void RunLocalSlam();
   void RunPublisher();
   void RunRgbd();
+  void RunVisual();
+  // RGB-D thread: a decoded frame for the visual thread (those the checker would skip anyway,
+  // closer than its min_interval_s, are not copied).
+  void OfferVisualFrame(const sensor::RgbdFrame& frame);
+  // Visual thread: its keyframes to visual_keyframes_path_.
+  void SaveVisualKeyframes(const session::VisualStage& stage);
   void Process(SensorMessage& message);
   void MaybeCheckpoint(bool force);
   void PublishSubmapsAndLoops(double stamp_s);
   void ConnectSession();
+  bool DecodesRgbd() const;
 
   const io::SlamConfig slam_;
   const DaemonOptions options_;
@@ -115,6 +136,16 @@ class Engine {
   LatencyWindow latency_;
   // SLAM thread → RGB-D thread: the session's pose updates for its cloud stage.
   BoundedQueue<session::CloudPoseUpdate> cloud_poses_;
+  // SLAM thread → visual thread: pose updates (never blocking the SLAM thread; at 25 Hz this
+  // holds minutes); RGB-D thread → visual thread: frames, visual_loop.max_queue_frames.
+  BoundedQueue<session::CloudPoseUpdate> visual_poses_;
+  BoundedQueue<sensor::RgbdFrame> visual_frames_;
+  std::atomic<int64_t> visual_frames_dropped_{0};
+  std::atomic<int64_t> visual_poses_dropped_{0};
+  double last_visual_frame_s_ = -1e300;  // RGB-D thread only
+  // Set by the visual thread once its stage has finished (SlamSession::Finish waits for it).
+  std::promise<void> visual_done_;
+  std::string visual_keyframes_path_;  // empty: keyframes are not saved
   std::unique_ptr<common::Executor> executor_;
   std::unique_ptr<session::SlamSession> session_;
 
@@ -126,8 +157,14 @@ class Engine {
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};
   std::atomic<double> last_stamp_s_{0.0};
+  // Visual thread → publisher: its counters and newest decision, copied after each change.
+  mutable std::mutex visual_mutex_;
+  session::VisualStageStats visual_stats_;  // guarded by visual_mutex_
+  size_t visual_records_ = 0;               // guarded by visual_mutex_
+  io::LoopNote newest_loop_;                // guarded by visual_mutex_
   // Publisher thread only.
   int published_loop_closures_ = 0;
+  size_t published_visual_records_ = 0;
 
   std::mutex finish_mutex_;
   bool started_ = false;   // guarded by finish_mutex_
@@ -135,6 +172,7 @@ class Engine {
   std::thread slam_thread_;
   std::thread publisher_thread_;
   std::thread rgbd_thread_;
+  std::thread visual_thread_;  // with visual_loop.enabled
 };
 
 }  // namespace daemon

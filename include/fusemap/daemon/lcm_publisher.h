@@ -33,7 +33,8 @@ class LcmPublisher : public Publisher {
   void PublishPose(double stamp_s, const common::Rigid2d& T_map_tracking) override;
   void PublishSubmapList(double stamp_s, const pose_graph::PoseGraphSnapshot& snapshot) override;
   void PublishLoopClosure(double stamp_s, int new_loop_closures,
-                          const pose_graph::PoseGraph2D::Stats& stats, int latest_node) override;
+                          const pose_graph::PoseGraph2D::Stats& stats, int latest_node,
+                          const io::LoopNote& note) override;
   void PublishHealth(double stamp_s, const HealthReport& report) override;
 
   int64_t published() const { return published_; }

@@ -5,6 +5,7 @@
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/daemon/health.h"
+#include "fusemap/io/lcm_output_conversions.h"
 #include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
 #include "fusemap/pose_graph/pose_graph_snapshot.h"
@@ -20,8 +21,10 @@ class Publisher {
   // T_map_tracking of the scan stamped `stamp_s`.
   virtual void PublishPose(double stamp_s, const common::Rigid2d& T_map_tracking) = 0;
   virtual void PublishSubmapList(double stamp_s, const pose_graph::PoseGraphSnapshot& snapshot) = 0;
+  // `note`: the newest decision of the visual loop checker (source "laser", decision "" without).
   virtual void PublishLoopClosure(double stamp_s, int new_loop_closures,
-                                  const pose_graph::PoseGraph2D::Stats& stats, int latest_node) = 0;
+                                  const pose_graph::PoseGraph2D::Stats& stats, int latest_node,
+                                  const io::LoopNote& note) = 0;
   virtual void PublishHealth(double stamp_s, const HealthReport& report) = 0;
 };
 

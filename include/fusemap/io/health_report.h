@@ -45,6 +45,18 @@ struct HealthReport {
   // the input (see Intake).
   int checkpoint_failures = 0;
   int64_t time_resets = 0;
+  // The ORB visual loop checker (session::VisualStage; 0 when off).
+  struct Visual {
+    int keyframes = 0;
+    int candidates = 0;
+    int verified = 0;
+    int forced = 0;
+    int overridden = 0;
+    int rejected = 0;
+    int queue_depth = 0;
+    int64_t dropped_frames = 0;
+  };
+  Visual visual;
 };
 
 }  // namespace io

@@ -49,10 +49,18 @@ std::vector<uint8_t> EncodeSubmapList(double stamp_s,
 bool DecodeSubmapList(const void* data, int size, double* stamp_s,
                       pose_graph::PoseGraphSnapshot* out, std::string* error);
 
-// fusemap_lcm::loop_closure_t: new and total loop closures, optimisations, the latest node.
+// The newest loop decision of the visual loop checker, as loop_closure_t carries it; the
+// default is what a run without the checker sends.
+struct LoopNote {
+  std::string source = "laser";  // laser, visual, both
+  std::string decision;          // visual_loop::ToString(LoopDecision), "" without the checker
+};
+
+// fusemap_lcm::loop_closure_t: new and total loop closures, optimisations, the latest node,
+// the newest decision's source and decision.
 std::vector<uint8_t> EncodeLoopClosure(double stamp_s, int new_loop_closures,
                                        const pose_graph::PoseGraph2D::Stats& stats,
-                                       int latest_node);
+                                       int latest_node, const LoopNote& note = LoopNote());
 
 // fusemap_lcm::health_t (skipped and trimmed_* are not on the wire).
 std::vector<uint8_t> EncodeHealth(double stamp_s, const HealthReport& report);

@@ -17,7 +17,8 @@ extern const char kLoopsTsvHeader[];
 // a laser loop), visual_inliers (0 without a verified visual loop), decision
 // (laser_confirmed|visual_override|visual_forced|laser_kept|laser_rejected) and x_m, y_m,
 // yaw_rad of the node in the submap by the chosen constraint (for laser_rejected, by the laser
-// one that was removed). Written atomically.
+// one that was removed); then disagreement_m and disagreement_rad between the laser and the
+// visual measurement (0 unless both exist) and the arbiter's reason. Written atomically.
 bool WriteLoopsTsv(const std::string& path,
                    const std::vector<visual_loop::ArbitrationRecord>& records, std::string* error);
 

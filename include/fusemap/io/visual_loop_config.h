@@ -30,6 +30,14 @@ struct VisualLoopConfig {
   // node is at most this many nodes away; a visual loop and a laser loop are one pair when
   // their nodes are this close (and the submap is the same).
   int max_node_gap = 5;
+  // A laser loop is checked against the submap's keyframe nearest where it puts the node, and
+  // only if that keyframe stands within this distance and turn of it (farther views are not a
+  // check of that place; the loop is then kept unchecked).
+  double max_check_distance_m = 1.5;
+  double max_check_yaw_rad = 0.8;
+  // How many of those keyframes (nearest first) are tried; a laser loop is rejected only if
+  // every one tried contradicts it.
+  int max_check_views = 3;
   // Frames waiting for a laser pose newer than themselves; beyond this the oldest is dropped.
   int max_pending_frames = 16;
   // fusemapd: frames queued for the checker's own thread; when full the oldest is dropped.
@@ -47,7 +55,7 @@ std::string ResolveVocabularyPath(const std::string& path);
 bool LoadVisualLoopVocabulary(VisualLoopConfig* config, std::string* error);
 
 // Keys: enabled, vocabulary, translation_weight, rotation_weight, max_node_gap,
-// max_pending_frames, max_queue_frames, keyframes (min_translation_m, min_rotation_rad,
+// max_check_distance_m, max_check_yaw_rad, max_check_views, max_pending_frames, max_queue_frames, keyframes (min_translation_m, min_rotation_rad,
 // max_interval_s, min_interval_s, max_features, min_depth_m, max_depth_m), recognition
 // (num_recent_excluded, min_normalized_score, temporal_consistency, island_gap), verification
 // (min_inliers, pnp_threshold_px, max_mean_reprojection_px, min_occupied_cells), planar

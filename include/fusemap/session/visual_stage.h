@@ -10,6 +10,7 @@
 
 #include "fusemap/cloud/cloud_mapper.h"
 #include "fusemap/cloud/pose_interpolator.h"
+#include "fusemap/io/visual_keyframes_file.h"
 #include "fusemap/io/visual_loop_config.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 #include "fusemap/sensor/rgbd_frame.h"
@@ -77,6 +78,11 @@ class VisualStage {
   // End of input: frames still waiting for a pose are dropped, every laser loop still waiting
   // is arbitrated.
   void Finish();
+
+  // Checkpoints: the keyframes and where their bases stood relative to their nodes. Restore
+  // only before any input (the counters and records restart).
+  io::VisualKeyframesState ExportState() const;
+  void RestoreState(io::VisualKeyframesState state);
 
   const std::vector<visual_loop::ArbitrationRecord>& records() const { return records_; }
   VisualStageStats stats() const;

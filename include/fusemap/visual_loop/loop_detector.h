@@ -54,6 +54,11 @@ class LoopDetector {
 
   // Drops a keyframe (its submap was trimmed).
   void Remove(int id);
+  // Stores a keyframe as a candidate without querying with it (a restored checkpoint). Ids
+  // must increase.
+  void Restore(Keyframe keyframe);
+  // Every keyframe held, by id.
+  const std::map<int, Keyframe>& keyframes() const { return keyframes_; }
   const Keyframe* Find(int id) const;
   int size() const { return static_cast<int>(keyframes_.size()); }
   size_t BytesUsed() const;

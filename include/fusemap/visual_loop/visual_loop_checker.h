@@ -66,6 +66,12 @@ struct VisualCheckResult {
   std::string reason;
 };
 
+// A keyframe as a checkpoint keeps it: what the detector holds and the camera mount.
+struct SavedKeyframe {
+  Keyframe keyframe;
+  common::Rigid3d T_base_camera;
+};
+
 struct VisualLoopCheckerStats {
   int keyframes = 0;        // held now
   int candidates = 0;       // queries with a consistent island
@@ -106,6 +112,13 @@ class VisualLoopChecker {
 
   VisualLoopCheckerStats stats() const;
   const LoopDetector& detector() const { return detector_; }
+
+  // Checkpoints: the keyframes held, by increasing id, and the next id to give out.
+  std::vector<SavedKeyframe> ExportKeyframes() const;
+  int next_keyframe_id() const { return next_id_; }
+  // Only on a checker without keyframes: takes them back (ids increasing, below next_id) as
+  // loop candidates; counters restart.
+  void RestoreKeyframes(std::vector<SavedKeyframe> keyframes, int next_id);
 
  private:
   std::optional<VisualLoopConstraint> ToConstraint(const Keyframe& match, const Keyframe& query,
