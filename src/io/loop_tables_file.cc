@@ -11,8 +11,10 @@ namespace fusemap {
 namespace io {
 namespace {
 
-// Whitespace-separated fields of the next record: false at the end (*error empty) or with
-// *error set; `header` receives a line starting with `header_word` instead of a record.
+// Fields of the next record (tab-separated if the line has a tab, so a last free-text column
+// may hold spaces; else whitespace-separated), at least num_fields of them, more ignored:
+// false at the end (*error empty) or with *error set; `header` receives a line starting with
+// `header_word` instead of a record.
 class TableReader {
  public:
   TableReader(std::istream& in, std::string origin, size_t num_fields, std::string layout,
@@ -24,15 +26,13 @@ class TableReader {
     std::string line;
     while (std::getline(in_, line)) {
       ++line_number_;
-      std::istringstream words(line);
-      fields->clear();
-      for (std::string word; words >> word;) fields->push_back(word);
-      if (fields->empty() || (*fields)[0][0] == '#') continue;
+      Split(line, fields);
+      if (fields->empty() || (*fields)[0].empty() || (*fields)[0][0] == '#') continue;
       if ((*fields)[0] == header_word_) {
         *header = *fields;
         continue;
       }
-      if (fields->size() != num_fields_) {
+      if (fields->size() < num_fields_) {
         return Fail("expected " + std::to_string(num_fields_) + " fields (" + layout_ + "), got " +
                         std::to_string(fields->size()),
                     error);
@@ -41,6 +41,18 @@ class TableReader {
     }
     if (in_.bad()) return Fail("read error", error);
     return false;
+  }
+
+  static void Split(const std::string& line, std::vector<std::string>* fields) {
+    fields->clear();
+    if (line.find('\t') == std::string::npos) {
+      std::istringstream words(line);
+      for (std::string word; words >> word;) fields->push_back(word);
+      return;
+    }
+    std::istringstream cells(line);
+    for (std::string cell; std::getline(cells, cell, '\t');) fields->push_back(cell);
+    if (fields->size() == 1 && (*fields)[0].find_first_not_of(" \r") == std::string::npos) fields->clear();
   }
 
   bool Fail(const std::string& reason, std::string* error) const {

@@ -29,6 +29,21 @@ TEST(LoopTablesFileTest, ReadsLoopsWithHeaderAndDegrees) {
   EXPECT_EQ(loops[1].decision, "visual_forced");
 }
 
+TEST(LoopTablesFileTest, ExtraTabSeparatedColumnsWithSpacesAreIgnored) {
+  std::istringstream in(
+      "node\tsubmap\tsource\tlaser_score\tvisual_inliers\tdecision\tx_m\ty_m\tyaw_rad\t"
+      "disagreement_m\treason\n"
+      "5\t1\tboth\t0.6\t44\tvisual_override\t1\t2\t0.5\t0.8\tdisagree by 0.8 m\n"
+      "6\t1\tlaser\t0.7\t0\tlaser_kept\t1\t2\t0.5\t0\t\n");
+  std::vector<eval::LoopRecord> loops;
+  std::string error;
+  ASSERT_TRUE(ReadLoops(in, "loops.tsv", &loops, &error)) << error;
+  ASSERT_EQ(loops.size(), 2u);
+  EXPECT_EQ(loops[0].decision, "visual_override");
+  EXPECT_DOUBLE_EQ(loops[0].T_submap_node.angle_rad(), 0.5);
+  EXPECT_EQ(loops[1].node, 6);
+}
+
 TEST(LoopTablesFileTest, ErrorsNameLineAndField) {
   std::vector<eval::LoopRecord> loops;
   std::string error;

@@ -10,9 +10,10 @@
 namespace fusemap {
 namespace io {
 
-// DIR/loops.tsv: one loop per line, `node submap source laser_score visual_inliers decision x
-// y yaw` (T_submap_node, metres and radians; a header naming the last column `yaw_deg` makes
-// it degrees), whitespace-separated. '#' comments, blank lines and a header line starting with
+// DIR/loops.tsv: one loop per line starting `node submap source laser_score visual_inliers
+// decision x y yaw` (T_submap_node, metres and radians; a header naming the ninth column
+// `yaw_deg` makes it degrees); further columns (disagreement, reason) are ignored. Tab-separated
+// (a line without tabs: whitespace). '#' comments, blank lines and a header line starting with
 // `node` are skipped. Errors name `origin:line: reason`.
 bool ReadLoops(std::istream& in, const std::string& origin, std::vector<eval::LoopRecord>* loops,
                std::string* error);
