@@ -48,7 +48,9 @@ TEST(RunOutputsTest, SubmapAnchorsAndLoopTableMatchTheGraph) {
   EXPECT_EQ(submaps[0].first_node, 0);
   for (size_t i = 0; i < submaps.size(); ++i) {
     EXPECT_EQ(submaps[i].submap, static_cast<int>(i));
-    if (i > 0) EXPECT_GT(submaps[i].first_node, submaps[i - 1].first_node);
+    if (i > 0) {
+      EXPECT_GT(submaps[i].first_node, submaps[i - 1].first_node);
+    }
     EXPECT_NEAR(submaps[i].T_map_submap.x(), snapshot->T_map_submaps[i].x(), 1e-6);
   }
   // Each loop is a laser constraint of the final graph: its pose agrees with the optimised
