@@ -9,6 +9,7 @@
 
 #include "fusemap/io/cloud_image.h"
 #include "fusemap/io/cloud_writer.h"
+#include "fusemap/io/loop_tables_file.h"
 #include "fusemap/io/loops_file.h"
 #include "fusemap/io/map_writer.h"
 #include "fusemap/io/tum_trajectory.h"
@@ -100,6 +101,48 @@ bool WriteCloud(const cloud::CloudMapper& mapper, const mapping::GridImage& lase
 
 }  // namespace
 
+namespace {
+
+// DIR/submaps.tsv (each held submap's map pose and the first node inserted into it, which ties
+// the submap frame to a true pose for fusemap_eval loops) and, when no visual stage records the
+// loop decisions (graph_loops), DIR/loops.tsv: the graph's laser loop closures as they stand at
+// the end, all `laser_kept`.
+bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, bool graph_loops, const std::string& out,
+                     RunOutputsReport* report, std::string* error) {
+  std::vector<std::shared_ptr<const mapping::Submap2D>> submaps;
+  const pose_graph::PoseGraphState2D state = graph.ExportState(&submaps);
+  std::vector<int> first_node(state.T_map_submaps.size(), -1);
+  for (const auto& node : state.nodes) {
+    for (int submap : node.inserted_into) {
+      if (submap >= 0 && submap < static_cast<int>(first_node.size()) && first_node[submap] < 0) {
+        first_node[submap] = node.index;
+      }
+    }
+  }
+  std::vector<eval::SubmapAnchor> anchors;
+  for (size_t i = 0; i < first_node.size(); ++i) {
+    if (first_node[i] >= 0) anchors.push_back({static_cast<int>(i), first_node[i], state.T_map_submaps[i]});
+  }
+  if (!io::WriteSubmapAnchorsFile(out + "submaps.tsv", anchors, error)) return false;
+  report->files.push_back(out + "submaps.tsv");
+  if (!graph_loops) return true;
+  std::vector<visual_loop::ArbitrationRecord> loops;
+  for (const pose_graph::Constraint2D& c : state.constraints) {
+    if (c.tag != pose_graph::Constraint2D::kInterSubmap) continue;
+    visual_loop::ArbitrationRecord record;
+    record.node = c.node;
+    record.submap = c.submap;
+    record.laser = visual_loop::LoopMeasurement2D{c.T_submap_node};
+    record.laser->laser_score = c.laser_score;
+    loops.push_back(record);
+  }
+  if (!io::WriteLoopsTsv(out + "loops.tsv", loops, error)) return false;
+  report->files.push_back(out + "loops.tsv");
+  return true;
+}
+
+}  // namespace
+
 eval::Trajectory ToTrajectory(const std::vector<pose_graph::MapBuilder2D::TimedPose2d>& poses) {
   eval::Trajectory trajectory;
   for (const auto& p : poses) {
@@ -167,6 +210,9 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
   }
   report->files.insert(report->files.end(),
                        {out + "trajectory.tum", out + "nodes.tum", out + "odometry.tum"});
+  if (!WriteLoopTables(run.builder->pose_graph(), run.loop_records == nullptr, out, report, error)) {
+    return false;
+  }
   std::vector<Eigen::Vector2d> xy;
   for (const auto& p : dense) xy.push_back(p.pose.translation());
   if (run.loop_records != nullptr) {

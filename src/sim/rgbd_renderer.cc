@@ -353,5 +353,17 @@ sensor::RgbdFrame RenderRgbdFrame(const World& world, const std::vector<Prism>& 
   return frame;
 }
 
+void ApplyLighting(const LightingPhase& lighting, uint64_t seed, uint64_t frame_index,
+                   std::vector<uint8_t>* color_rgb) {
+  if (lighting.gain == 1.0 && lighting.bias == 0.0 && lighting.noise_std == 0.0) return;
+  std::mt19937_64 rng = MakeRng(seed, NoiseStream::kColor, frame_index);
+  std::normal_distribution<double> noise(0.0, lighting.noise_std);
+  for (uint8_t& value : *color_rgb) {
+    double v = lighting.gain * value + lighting.bias;
+    if (lighting.noise_std > 0.0) v += noise(rng);
+    value = static_cast<uint8_t>(std::clamp(std::lround(v), 0L, 255L));
+  }
+}
+
 }  // namespace sim
 }  // namespace fusemap

@@ -56,7 +56,19 @@ std::unique_ptr<Simulation> Simulation::Create(World world, const SimulationOpti
 }
 
 Simulation::Simulation(World world, const SimulationOptions& options)
-    : world_(std::move(world)), options_(options), trajectory_(world_.robot) {}
+    : world_(std::move(world)), options_(options), trajectory_(world_.robot) {
+  for (const LightingPhase& phase : world_.lighting) {
+    lighting_start_s_.push_back(trajectory_.TimeAtLaps(phase.from_lap));
+  }
+}
+
+LightingPhase Simulation::LightingAt(double sim_time_s) const {
+  LightingPhase lighting;
+  for (size_t i = 0; i < lighting_start_s_.size() && lighting_start_s_[i] <= sim_time_s; ++i) {
+    lighting = world_.lighting[i];
+  }
+  return lighting;
+}
 
 int Simulation::Count(double rate_hz, double seconds) {
   // Samples at i / rate strictly before `seconds` (tiny epsilon: 60 s at 25 Hz is 1500).
@@ -71,8 +83,11 @@ sensor::LaserScan Simulation::Laser(int index) const {
 
 sensor::RgbdFrame Simulation::Rgbd(int index) const {
   const double t = index / options_.rgbd.rate_hz;
-  return RenderRgbdFrame(world_, PrismsAt(world_, t), floor_tags_, Truth(t).T_world_base, Stamp(t),
-                         options_.rgbd, options_.seed, index);
+  sensor::RgbdFrame frame = RenderRgbdFrame(world_, PrismsAt(world_, t), floor_tags_,
+                                            Truth(t).T_world_base, Stamp(t), options_.rgbd,
+                                            options_.seed, index);
+  ApplyLighting(LightingAt(t), options_.seed, index, &frame.color_rgb);
+  return frame;
 }
 
 OdometrySimulator Simulation::MakeOdometrySimulator() const {

@@ -52,14 +52,15 @@ Eigen::Vector3f Poster(const Texture& t, double u, double v) {
   const double panel_w = 4.0 * t.scale_m;
   const int64_t panel = FloorDiv(u, panel_w);
   const double pu = u - panel * panel_w;
-  // Poster occupies most of the panel between 0.7 m and 2.0 m height.
+  // Poster occupies most of the panel within the texture's height band.
   const double margin = 0.1 * panel_w;
-  if (pu < margin || pu > panel_w - margin || v < 0.7 || v > 2.0) return t.color_a;
-  if (pu < margin + 0.02 || pu > panel_w - margin - 0.02 || v < 0.72 || v > 1.98) {
+  const double bottom = t.band_bottom_m, top = t.band_top_m;
+  if (pu < margin || pu > panel_w - margin || v < bottom || v > top) return t.color_a;
+  if (pu < margin + 0.02 || pu > panel_w - margin - 0.02 || v < bottom + 0.02 || v > top - 0.02) {
     return t.color_b;  // Frame.
   }
   const double x = (pu - margin) / (panel_w - 2.0 * margin);
-  const double y = (v - 0.7) / 1.3;
+  const double y = (v - bottom) / (top - bottom);
   Eigen::Vector3f color = Lerp(Eigen::Vector3f(245.f, 240.f, 225.f), t.color_a, 0.2);
   // A few seeded rectangles and discs, painted in order (later ones on top).
   for (uint64_t k = 0; k < 6; ++k) {
@@ -67,7 +68,7 @@ Eigen::Vector3f Poster(const Texture& t, double u, double v) {
     const double cy = HashToUnit(t.seed, panel, 10 * k + 2);
     const double size = 0.08 + 0.25 * HashToUnit(t.seed, panel, 10 * k + 3);
     const bool disc = HashToUnit(t.seed, panel, 10 * k + 4) < 0.4;
-    const double dx = x - cx, dy = (y - cy) * 1.3 / (panel_w - 2.0 * margin);
+    const double dx = x - cx, dy = (y - cy) * (top - bottom) / (panel_w - 2.0 * margin);
     const bool inside = disc ? dx * dx + dy * dy < size * size * 0.5
                              : std::abs(dx) < size && std::abs(dy) < 0.6 * size;
     if (inside) color = VividColor(t.seed, panel, k);

@@ -116,5 +116,12 @@ RobotState WaypointTrajectory::StateAt(double stamp_s) const {
   return state;
 }
 
+double WaypointTrajectory::TimeAtLaps(double laps) const {
+  const double index = std::clamp(laps * loop_length_m_ / ds_m_, 0.0,
+                                  static_cast<double>(stamps_s_.size() - 1));
+  const size_t i = std::min(static_cast<size_t>(index), stamps_s_.size() - 2);
+  return stamps_s_[i] + (index - i) * (stamps_s_[i + 1] - stamps_s_[i]);
+}
+
 }  // namespace sim
 }  // namespace fusemap

@@ -96,7 +96,7 @@ class Parser {
 
   Texture ParseTexture(const YAML::Node& node) {
     Texture texture;
-    CheckKeys(node, {"kind", "seed", "scale_m", "color_a", "color_b"});
+    CheckKeys(node, {"kind", "seed", "scale_m", "color_a", "color_b", "band_m"});
     if (!ok()) return texture;
     const std::string kind = node["kind"] ? node["kind"].as<std::string>() : "plain";
     if (!TextureKindFromName(kind, &texture.kind)) Fail(node, "unknown texture kind '" + kind + "'");
@@ -104,6 +104,14 @@ class Parser {
     texture.scale_m = Number(node, "scale_m", texture.scale_m, 0.01, 10.0);
     texture.color_a = Color(node, "color_a", texture.color_a);
     texture.color_b = Color(node, "color_b", texture.color_b);
+    if (node["band_m"]) {
+      const std::vector<double> band = Numbers(node["band_m"], 2);
+      if (!(band[0] >= 0.0 && band[1] >= band[0] + 0.1 && band[1] <= 50.0)) {
+        Fail(node["band_m"], "band_m needs 0 <= bottom and bottom + 0.1 <= top <= 50");
+      }
+      texture.band_bottom_m = band[0];
+      texture.band_top_m = band[1];
+    }
     return texture;
   }
 
@@ -130,7 +138,7 @@ class Parser {
 
 void ParseWorld(const YAML::Node& root, Parser* p, World* world) {
   p->CheckKeys(root, {"name", "ceiling_height_m", "floor", "textures", "walls", "pillars", "boxes",
-                      "tags", "people", "depth_dropout_zones", "robot"});
+                      "tags", "people", "depth_dropout_zones", "lighting", "robot"});
   if (!p->ok()) return;
   world->name = root["name"] ? root["name"].as<std::string>() : "";
   world->ceiling_height_m = p->Number(root, "ceiling_height_m", world->ceiling_height_m, 1.0, 50.0);
@@ -223,6 +231,18 @@ void ParseWorld(const YAML::Node& root, Parser* p, World* world) {
     DepthDropoutZone z{p->Point(zone, "min"), p->Point(zone, "max")};
     if (!(z.min_m.array() < z.max_m.array()).all()) p->Fail(zone, "zone needs min < max");
     world->depth_dropout_zones.push_back(z);
+  }
+  for (const YAML::Node& phase : root["lighting"]) {
+    p->CheckKeys(phase, {"from_lap", "gain", "bias", "noise_std"});
+    LightingPhase l;
+    l.from_lap = p->Number(phase, "from_lap", l.from_lap, 0.0, 1000.0);
+    l.gain = p->Number(phase, "gain", l.gain, 0.05, 10.0);
+    l.bias = p->Number(phase, "bias", l.bias, -255.0, 255.0);
+    l.noise_std = p->Number(phase, "noise_std", l.noise_std, 0.0, 100.0);
+    if (!world->lighting.empty() && l.from_lap <= world->lighting.back().from_lap) {
+      p->Fail(phase, "lighting phases need increasing from_lap");
+    }
+    world->lighting.push_back(l);
   }
   const YAML::Node robot = root["robot"];
   if (!robot) return p->Fail(root, "missing 'robot'");

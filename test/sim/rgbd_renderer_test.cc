@@ -124,6 +124,30 @@ TEST(RgbdRendererTest, DepthOfFlatFloorAndWall) {
   }
 }
 
+TEST(RgbdRendererTest, LightingScalesShiftsAndAddsSeededNoise) {
+  const std::vector<uint8_t> image = {0, 10, 100, 200, 250, 255};
+  std::vector<uint8_t> same = image;
+  ApplyLighting(LightingPhase(), 1, 0, &same);
+  EXPECT_EQ(same, image);  // the identity phase leaves frames as rendered
+  std::vector<uint8_t> darker = image;
+  ApplyLighting(LightingPhase{0.0, 0.5, 10.0, 0.0}, 1, 0, &darker);
+  EXPECT_EQ(darker, (std::vector<uint8_t>{10, 15, 60, 110, 135, 138}));
+  std::vector<uint8_t> grey(3 * 64 * 64, 128), a = grey, b = grey, c = grey;
+  const LightingPhase noisy{0.0, 1.0, 0.0, 8.0};
+  ApplyLighting(noisy, 1, 5, &a);
+  ApplyLighting(noisy, 1, 5, &b);
+  ApplyLighting(noisy, 1, 6, &c);
+  EXPECT_EQ(a, b);  // per frame seed: independent of rendering order
+  EXPECT_NE(a, c);
+  double sum = 0.0, sum_sq = 0.0;
+  for (uint8_t v : a) {
+    sum += v - 128.0;
+    sum_sq += (v - 128.0) * (v - 128.0);
+  }
+  EXPECT_NEAR(sum / a.size(), 0.0, 0.3);
+  EXPECT_NEAR(std::sqrt(sum_sq / a.size()), 8.0, 0.3);
+}
+
 }  // namespace
 }  // namespace sim
 }  // namespace fusemap

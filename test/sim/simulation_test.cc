@@ -169,6 +169,51 @@ TEST(SimulationTest, OdometryDriftsButStaysClose) {
   EXPECT_NEAR(mean_az, 9.81, 0.2);
 }
 
+TEST(WorldLoaderTest, PosterBandAndLightingPhases) {
+  World world;
+  std::string error;
+  const std::string base =
+      "robot: {waypoints: [[0, 0], [10, 0], [10, 4]], laps: 2}\n"
+      "walls:\n  - {from: [0, 1], to: [5, 1], texture: {kind: poster, band_m: [0.1, 0.9]}}\n";
+  ASSERT_TRUE(LoadWorldFromString(base + "lighting:\n  - {from_lap: 1, gain: 0.6, bias: 12, "
+                                         "noise_std: 6}\n",
+                                  "w.yaml", &world, &error))
+      << error;
+  EXPECT_DOUBLE_EQ(world.prisms[0].side_textures[1].band_bottom_m, 0.1);
+  EXPECT_DOUBLE_EQ(world.prisms[0].side_textures[1].band_top_m, 0.9);
+  ASSERT_EQ(world.lighting.size(), 1u);
+  EXPECT_DOUBLE_EQ(world.lighting[0].gain, 0.6);
+  EXPECT_FALSE(LoadWorldFromString(base + "lighting:\n  - {from_lap: 1}\n  - {from_lap: 0.5}\n",
+                                   "w.yaml", &world, &error));
+  EXPECT_NE(error.find("w.yaml:6: lighting phases need increasing from_lap"), std::string::npos)
+      << error;
+  EXPECT_FALSE(LoadWorldFromString(
+      "walls:\n  - {from: [0, 1], to: [5, 1], texture: {kind: poster, band_m: [1, 0.5]}}\n",
+      "b.yaml", &world, &error));
+  EXPECT_NE(error.find("b.yaml:2: band_m"), std::string::npos) << error;
+}
+
+TEST(SimulationTest, LightingPhaseStartsAtItsLap) {
+  World world = LoadHall();
+  world.robot.laps = 2.0;
+  world.lighting = {LightingPhase{1.0, 0.5, 0.0, 0.0}};
+  std::string error;
+  auto simulation = Simulation::Create(world, SmallOptions(1), &error);
+  ASSERT_TRUE(simulation) << error;
+  const WaypointTrajectory& trajectory = simulation->trajectory();
+  EXPECT_DOUBLE_EQ(trajectory.TimeAtLaps(0.0), 0.0);
+  EXPECT_DOUBLE_EQ(trajectory.TimeAtLaps(5.0), trajectory.duration_s());
+  const double lap_s = trajectory.TimeAtLaps(1.0);
+  // About halfway through a 2-lap drive that starts and ends at rest (the speed profile is not
+  // symmetric: the first leg starts after a corner, the last one ends before it).
+  EXPECT_NEAR(lap_s, 0.5 * trajectory.duration_s(), 0.5);
+  // After one lap the robot is back where it started.
+  EXPECT_LT((trajectory.StateAt(lap_s).T_world_base.translation() -
+             trajectory.StateAt(0.0).T_world_base.translation()).norm(), 0.02);
+  EXPECT_DOUBLE_EQ(simulation->LightingAt(lap_s - 0.01).gain, 1.0);
+  EXPECT_DOUBLE_EQ(simulation->LightingAt(lap_s + 0.01).gain, 0.5);
+}
+
 }  // namespace
 }  // namespace sim
 }  // namespace fusemap

@@ -72,6 +72,13 @@ if [[ -n ${bin[fusemap_eval]:-} ]]; then
   expect 2 "fusemap_eval ate without --est" "${bin[fusemap_eval]}" ate --gt "$work/x.tum"
   expect 1 "fusemap_eval ate on missing files" "${bin[fusemap_eval]}" ate --gt "$work/x.tum" \
     --est "$work/y.tum"
+  printf '1 0 0 0 0 0 0 1\n2 1 0 0 0 0 0 1\n' >"$work/gt.tum"
+  expect 1 "fusemap_eval loops without DIR/loops.tsv" "${bin[fusemap_eval]}" loops \
+    --gt "$work/gt.tum" --dir "$work/norun"
+  stderr_has "nodes.tum: cannot open" "fusemap_eval loops without DIR/loops.tsv"
+  expect 1 "fusemap_eval start-end far from the gt" "${bin[fusemap_eval]}" start-end \
+    --gt "$work/gt.tum" --est <(printf '5 0 0 0 0 0 0 1\n')
+  stderr_has "no ground truth near" "fusemap_eval start-end far from the gt"
 fi
 if [[ -n ${bin[fusemap_tagscore]:-} ]]; then
   expect 2 "fusemap_tagscore unknown command" "${bin[fusemap_tagscore]}" nonsense
@@ -108,6 +115,9 @@ usage fusemap_bench_vloop "--rounds 0" "--rounds: '0'" --rounds 0
 usage fusemap_bench_vloop "--keyframes x" "--keyframes: 'x'" --keyframes x
 usage fusemap_eval "rpe --delta-unit km" "--delta-unit: 'km'" rpe --gt a.tum --est b.tum \
   --delta-unit km
+usage fusemap_eval "start-end --max-time-gap -1" "--max-time-gap: '-1'" start-end --gt a.tum \
+  --est b.tum --max-time-gap -1
+usage fusemap_eval "loops without --dir" "missing required option --dir" loops --gt a.tum
 usage fusemap_eval "relations --max-time-gap -1" "--max-time-gap: '-1'" relations \
   --relations r --trajectory t --max-time-gap -1
 usage fusemap_tagscore "groundtruth without --tags" "missing required option --tags" groundtruth \
@@ -121,6 +131,7 @@ usage fusemap_vloop "train-vocabulary --k 1" "branching" train-vocabulary v.bin 
 usage fusemap_bench_images "contact-sheet without images" "missing IMAGE" contact-sheet --out x.png
 usage fusemap_bench_images "unknown command" "unknown command 'nonsense'" nonsense
 for command in "fusemap_eval ate" "fusemap_eval rpe" "fusemap_eval relations" \
+               "fusemap_eval start-end" "fusemap_eval loops" \
                "fusemap_tagscore detect" "fusemap_tagscore score" "fusemap_vloop match" \
                "fusemap_vloop detect" "fusemap_vloop train-vocabulary" \
                "fusemap_bench_images contact-sheet"; do

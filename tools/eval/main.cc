@@ -1,12 +1,15 @@
 // fusemap_eval: trajectory accuracy metrics (Kümmerle relations, ATE, RPE) over TUM files.
 #include <cstdio>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "fusemap/common/command_line.h"
 #include "fusemap/eval/absolute_trajectory_error.h"
+#include "fusemap/eval/loop_closure_score.h"
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/relative_pose_error.h"
+#include "fusemap/io/loop_tables_file.h"
 #include "fusemap/io/relations_file.h"
 #include "fusemap/io/stamp_map_file.h"
 #include "fusemap/io/tum_trajectory.h"
@@ -20,6 +23,8 @@ constexpr char kUsage[] =
     "  relations  Kuemmerle et al. (2009) relation error of a trajectory\n"
     "  ate        absolute trajectory error between two TUM trajectories\n"
     "  rpe        relative pose error between two TUM trajectories\n"
+    "  start-end  start-to-end motion of a trajectory against the ground truth's\n"
+    "  loops      loop closures of a run (DIR/loops.tsv) against the ground truth\n"
     "Run 'fusemap_eval <command> --help' for the options of a command.\n";
 
 constexpr char kRelationsUsage[] =
@@ -51,6 +56,24 @@ constexpr char kRpeUsage[] =
     "  --delta-unit m|s    metres travelled along the ground truth or seconds (default m)\n"
     "  --max-time-diff S   association tolerance between stamps (default 0.02)\n"
     "Last line: rpe_trans_rmse_m=... rpe_rot_mean_deg=...\n";
+
+constexpr char kStartEndUsage[] =
+    "usage: fusemap_eval start-end --gt A.tum --est B.tum [--max-time-gap S]\n"
+    "  The estimate's motion from its first to its last pose against the ground truth's\n"
+    "  between the same stamps (a loop that did not close shows here, alignment-free).\n"
+    "  --max-time-gap S   max distance from those stamps to a gt pose (default 0.05)\n"
+    "Last line: start_end_m=... start_end_deg=...\n";
+
+constexpr char kLoopsUsage[] =
+    "usage: fusemap_eval loops --gt GT.tum --dir DIR [--max-error-m M] [--max-error-deg D]\n"
+    "                          [--verbose]\n"
+    "  Scores DIR/loops.tsv (node submap source laser_score visual_inliers decision x y yaw)\n"
+    "  against the ground truth, using DIR/nodes.tum (node stamps, by index) and\n"
+    "  DIR/submaps.tsv (submap first_node x y yaw). A loop is wrong when its relative pose is\n"
+    "  off the truth by more than --max-error-m (default 0.3) or --max-error-deg (default 3).\n"
+    "  --verbose           a line per loop: node submap source decision err_m err_deg wrong\n"
+    "Prints decisions=NAME:COUNT,... and wrong_by_decision=NAME:COUNT,... then, last,\n"
+    "loops=N accepted=A wrong_accepted=W wrong_rejected=R unscored=U\n";
 
 using common::CommandLine;
 using common::NumberRange;
@@ -188,6 +211,79 @@ int RunRpe(int argc, char** argv) {
   return Rpe(args, options);
 }
 
+int RunStartEnd(int argc, char** argv) {
+  PairArgs args;
+  double max_time_gap_s = 0.05;
+  CommandLine command_line("fusemap_eval start-end", kStartEndUsage);
+  AddPairOptions(&command_line, &args);
+  command_line.AddDouble("--max-time-gap", &max_time_gap_s, NumberRange::NonNegative());
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  eval::Trajectory gt, est;
+  if (!ReadPair(args, &gt, &est)) return 1;
+  eval::StartEndError result;
+  std::string error;
+  if (!eval::ComputeStartEndError(gt, est, max_time_gap_s, &result, &error)) return Fail(error);
+  std::printf("start_end_m=%.4f start_end_deg=%.3f\n", result.translation_m, result.rotation_deg);
+  return 0;
+}
+
+// "name:count,..." or "none".
+std::string CountsList(const std::map<std::string, int>& counts) {
+  std::string list;
+  for (const auto& [name, count] : counts) {
+    list += (list.empty() ? "" : ",") + name + ":" + std::to_string(count);
+  }
+  return list.empty() ? "none" : list;
+}
+
+struct LoopsArgs {
+  std::string gt_path, dir;
+  eval::LoopScoreOptions options;
+  bool verbose = false;
+};
+
+int Loops(const LoopsArgs& args) {
+  std::string error;
+  eval::Trajectory gt, nodes;
+  std::vector<eval::LoopRecord> loops;
+  std::vector<eval::SubmapAnchor> submaps;
+  if (!io::ReadTumTrajectoryFile(args.gt_path, &gt, &error) ||
+      !io::ReadTumTrajectoryFile(args.dir + "/nodes.tum", &nodes, &error) ||
+      !io::ReadLoopsFile(args.dir + "/loops.tsv", &loops, &error) ||
+      !io::ReadSubmapAnchorsFile(args.dir + "/submaps.tsv", &submaps, &error)) {
+    return Fail(error);
+  }
+  const eval::LoopScore score = eval::ScoreLoops(loops, submaps, nodes, gt, args.options);
+  if (args.verbose) {
+    for (const eval::ScoredLoop& l : score.loops) {
+      std::printf("loop node=%d submap=%d source=%s decision=%s err_m=%.3f err_deg=%.2f wrong=%s\n",
+                  l.loop.node, l.loop.submap, l.loop.source.c_str(), l.loop.decision.c_str(),
+                  l.translation_error_m, l.rotation_error_deg,
+                  !l.scored ? "unscored" : (l.wrong ? "yes" : "no"));
+    }
+  }
+  std::printf("decisions=%s\n", CountsList(score.by_decision).c_str());
+  std::printf("wrong_by_decision=%s\n", CountsList(score.wrong_by_decision).c_str());
+  std::printf("loops=%zu accepted=%d wrong_accepted=%d wrong_rejected=%d unscored=%d\n",
+              score.loops.size(), score.accepted, score.wrong_accepted, score.wrong_rejected,
+              score.unscored);
+  return 0;
+}
+
+int RunLoops(int argc, char** argv) {
+  LoopsArgs args;
+  CommandLine command_line("fusemap_eval loops", kLoopsUsage);
+  command_line.AddString("--gt", &args.gt_path, CommandLine::Required::kYes);
+  command_line.AddString("--dir", &args.dir, CommandLine::Required::kYes);
+  command_line.AddDouble("--max-error-m", &args.options.max_translation_error_m,
+                         NumberRange::NonNegative());
+  command_line.AddDouble("--max-error-deg", &args.options.max_rotation_error_deg,
+                         NumberRange::NonNegative());
+  command_line.AddFlag("--verbose", &args.verbose);
+  if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;
+  return Loops(args);
+}
+
 }  // namespace
 }  // namespace fusemap
 
@@ -195,6 +291,8 @@ int main(int argc, char** argv) {
   return fusemap::common::RunSubcommand("fusemap_eval", fusemap::kUsage,
                                         {{"relations", fusemap::RunRelations},
                                          {"ate", fusemap::RunAte},
-                                         {"rpe", fusemap::RunRpe}},
+                                         {"rpe", fusemap::RunRpe},
+                                         {"start-end", fusemap::RunStartEnd},
+                                         {"loops", fusemap::RunLoops}},
                                         argc, argv);
 }

@@ -25,6 +25,8 @@ constexpr char kUsage[] =
     "  DIR/tags.yaml         floor AprilTag map (tag36h11): id -> x, y, yaw, size_m\n"
     "Options:\n"
     "  --seconds S       simulated duration (default 60)\n"
+    "  --to-end          simulate until the robot stops at the end of its drive (+1 s;\n"
+    "                    overrides --seconds)\n"
     "  --seed N          noise seed; same seed, same bytes (default 1)\n"
     "  --laser-rate HZ   laser scan rate (default 25)\n"
     "  --rgbd-rate HZ    RGB-D frame rate (default 10; 25 works but the log grows ~2.5x)\n"
@@ -36,6 +38,7 @@ struct Args {
   std::string world_path, out_dir;
   fusemap::sim::SimulationOptions options;
   int threads = 2;
+  bool to_end = false;
 };
 
 // Fills *args; nullopt to go on, else the exit code (--help 0, usage error 2).
@@ -50,6 +53,7 @@ std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
   command_line.AddDouble("--laser-rate", &args->options.laser.rate_hz);
   command_line.AddDouble("--rgbd-rate", &args->options.rgbd.rate_hz);
   command_line.AddFlag("--no-rgbd", &args->options.rgbd_enabled, false);
+  command_line.AddFlag("--to-end", &args->to_end);
   command_line.AddInt("--threads", &args->threads, 1, 64);
   if (const auto exit_code = command_line.ParseOrExitCode(argc, argv)) return exit_code;
   args->options.seed = static_cast<uint64_t>(seed);
@@ -63,7 +67,7 @@ std::optional<int> ParseArgs(int argc, char** argv, Args* args) {
 int Simulate(const Args& args) {
   const std::string& world_path = args.world_path;
   const std::string& out_dir = args.out_dir;
-  const fusemap::sim::SimulationOptions& options = args.options;
+  fusemap::sim::SimulationOptions options = args.options;
   const int threads = args.threads;
   std::string error;
   fusemap::sim::World world;
@@ -72,6 +76,7 @@ int Simulate(const Args& args) {
     return 1;
   }
   const std::vector<fusemap::sim::FloorTag> tags = world.tags;
+  if (args.to_end) options.seconds = fusemap::sim::WaypointTrajectory(world.robot).duration_s() + 1.0;
   auto simulation = fusemap::sim::Simulation::Create(std::move(world), options, &error);
   if (simulation == nullptr) {
     std::fprintf(stderr, "fusemap_sim: %s: %s\n", world_path.c_str(), error.c_str());

@@ -59,6 +59,12 @@ sensor::RgbdFrame RenderRgbdFrame(const World& world, const std::vector<Prism>& 
                                   double stamp_s, const RgbdCameraOptions& options, uint64_t seed,
                                   uint64_t frame_index);
 
+// Applies `lighting` to an RGB8 image in place: gain, bias, then noise drawn from
+// MakeRng(seed, kColor, frame_index) (so frames stay independent of rendering order); values
+// are rounded and clamped to 0..255. The identity phase leaves the image untouched.
+void ApplyLighting(const LightingPhase& lighting, uint64_t seed, uint64_t frame_index,
+                   std::vector<uint8_t>* color_rgb);
+
 }  // namespace sim
 }  // namespace fusemap
 

@@ -59,7 +59,10 @@ class Simulation {
 
   RobotState Truth(double sim_time_s) const { return trajectory_.StateAt(sim_time_s); }
   sensor::LaserScan Laser(int index) const;
+  // Rendered with the world's lighting phase at that time (see LightingAt).
   sensor::RgbdFrame Rgbd(int index) const;
+  // The world's lighting phase in effect at sim_time_s (identity before the first one).
+  LightingPhase LightingAt(double sim_time_s) const;
   OdometrySimulator MakeOdometrySimulator() const;
   ImuSimulator MakeImuSimulator() const;
 
@@ -70,6 +73,7 @@ class Simulation {
   SimulationOptions options_;
   WaypointTrajectory trajectory_;
   FloorTags floor_tags_;
+  std::vector<double> lighting_start_s_;  // Per world_.lighting phase.
 };
 
 }  // namespace sim

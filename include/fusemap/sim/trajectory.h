@@ -31,6 +31,8 @@ class WaypointTrajectory {
   double loop_length_m() const { return loop_length_m_; }
   // Clamped to [0, duration_s()].
   RobotState StateAt(double stamp_s) const;
+  // When the robot has driven `laps` times the loop length (clamped to the drive).
+  double TimeAtLaps(double laps) const;
 
  private:
   struct Piece {

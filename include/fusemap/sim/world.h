@@ -19,6 +19,10 @@ struct Texture {
   double scale_m = 0.25;  // Characteristic feature size (brick height, stripe width, ...).
   Eigen::Vector3f color_a = Eigen::Vector3f(180.f, 180.f, 180.f);  // RGB 0..255
   Eigen::Vector3f color_b = Eigen::Vector3f(90.f, 90.f, 90.f);
+  // Posters only: the height band they cover. A camera pitched down sees walls only below its
+  // own height, so worlds meant for visual place recognition hang them low.
+  double band_bottom_m = 0.7;
+  double band_top_m = 2.0;
 };
 
 // A vertical extruded convex shape standing on the floor plane (z up, world frame): walls,
@@ -62,6 +66,16 @@ struct DepthDropoutZone {
   Eigen::Vector2d max_m = Eigen::Vector2d::Zero();
 };
 
+// How the camera sees the world from a point of the drive on: colour = gain * rendered + bias,
+// plus Gaussian noise per pixel and channel (0..255 scale). A second lap under other lighting
+// tests that visual place recognition survives a brightness and noise change.
+struct LightingPhase {
+  double from_lap = 0.0;  // Laps driven (arc length / loop length) when it starts.
+  double gain = 1.0;
+  double bias = 0.0;
+  double noise_std = 0.0;
+};
+
 // The robot's route: a closed loop through the waypoints, driven laps times.
 struct RobotPlan {
   std::vector<Eigen::Vector2d> waypoints_m;
@@ -83,6 +97,7 @@ struct World {
   std::vector<FloorTag> tags;
   std::vector<Person> people;
   std::vector<DepthDropoutZone> depth_dropout_zones;
+  std::vector<LightingPhase> lighting;  // Increasing from_lap; none: rendered colours as is.
   RobotPlan robot;
 };
 

@@ -1,0 +1,87 @@
+// The worlds of the visual loop checker benchmark (tools/bench_vloop_sim.sh): what makes them
+// hard for the laser and fair for the camera must stay true when they are edited.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+
+#include "fusemap/sim/rgbd_renderer.h"
+#include "fusemap/sim/simulation.h"
+#include "fusemap/sim/world_loader.h"
+
+namespace fusemap {
+namespace sim {
+namespace {
+
+World Load(const std::string& name) {
+  World world;
+  std::string error;
+  EXPECT_TRUE(LoadWorldFile(std::string(FUSEMAP_SOURCE_DIR) + "/data/worlds/" + name, &world, &error))
+      << error;
+  return world;
+}
+
+// Poster seed -> number of walls showing it on their faces.
+std::map<uint32_t, int> PosterUse(const World& world) {
+  std::map<uint32_t, int> use;
+  for (const Prism& prism : world.prisms) {
+    if (prism.side_textures[0].kind == Texture::Kind::kPoster) ++use[prism.side_textures[0].seed];
+  }
+  return use;
+}
+
+class VisualWorldTest : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(VisualWorldTest, PostersDistinctExceptTheTrapPair) {
+  const World world = Load(GetParam());
+  const std::map<uint32_t, int> use = PosterUse(world);
+  ASSERT_GT(use.size(), 20u);
+  int traps = 0;
+  for (const auto& [seed, count] : use) {
+    if (count == 2) ++traps;
+    EXPECT_LE(count, 2) << "poster seed " << seed;
+  }
+  EXPECT_GE(traps, 1);  // the trap: a poster segment hanging in two places
+}
+
+TEST_P(VisualWorldTest, SecondLapDarkerAndNoisier) {
+  const World world = Load(GetParam());
+  EXPECT_GE(world.robot.laps, 2.0);
+  ASSERT_EQ(world.lighting.size(), 1u);
+  EXPECT_DOUBLE_EQ(world.lighting[0].from_lap, 1.0);
+  EXPECT_LT(world.lighting[0].gain, 0.8);
+  EXPECT_GT(world.lighting[0].noise_std, 2.0);
+}
+
+TEST_P(VisualWorldTest, CameraSeesPostersWithinDepthRange) {
+  const World world = Load(GetParam());
+  SimulationOptions options;
+  options.rgbd.width = 160;
+  options.rgbd.height = 120;
+  options.rgbd.fx = options.rgbd.fy = 131.25;
+  options.rgbd.cx = 79.5;
+  options.rgbd.cy = 59.5;
+  std::string error;
+  auto simulation = Simulation::Create(world, options, &error);
+  ASSERT_TRUE(simulation) << error;
+  // A few seconds into the first leg: walls on both sides, posters on them.
+  const sensor::RgbdFrame frame = simulation->Rgbd(static_cast<int>(4.0 * options.rgbd.rate_hz));
+  std::set<uint32_t> colours;
+  int wall_pixels_with_depth = 0;
+  for (int v = 0; v < 60; ++v) {  // upper half: walls, not floor
+    for (int u = 0; u < 160; ++u) {
+      const int i = v * 160 + u;
+      colours.insert((frame.color_rgb[3 * i] << 16) | (frame.color_rgb[3 * i + 1] << 8) |
+                     frame.color_rgb[3 * i + 2]);
+      if (frame.depth_mm[i] > 0) ++wall_pixels_with_depth;
+    }
+  }
+  EXPECT_GT(colours.size(), 30u);
+  EXPECT_GT(wall_pixels_with_depth, 60 * 160 / 2);  // most of it closer than depth_max_m
+}
+
+INSTANTIATE_TEST_SUITE_P(Worlds, VisualWorldTest, ::testing::Values("corridor.yaml", "rooms.yaml"));
+
+}  // namespace
+}  // namespace sim
+}  // namespace fusemap
