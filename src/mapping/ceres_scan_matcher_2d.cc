@@ -66,6 +66,8 @@ void CeresScanMatcherOptions2D::Check(common::OptionChecker* check) const {
   check->Require(rotation_weight >= 0.0, "rotation_weight", "must be >= 0");
   check->Require(max_num_iterations >= 1, "max_num_iterations", "must be >= 1");
   check->Require(num_threads >= 1, "num_threads", "must be >= 1");
+  check->Require(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability,
+                 "unknown_probability", "must be in [0.1, 0.9]");
 }
 
 bool CeresScanMatcherOptions2D::IsValid(std::string* error) const {
@@ -79,6 +81,7 @@ CeresScanMatcherOptions2D ParseCeresScanMatcherOptions2D(common::ConfigReader& r
   reader.Get("rotation_weight", &options.rotation_weight);
   reader.Get("max_num_iterations", &options.max_num_iterations);
   reader.Get("num_threads", &options.num_threads);
+  reader.Get("unknown_probability", &options.unknown_probability);
   reader.CheckOptions(options);
   return options;
 }
@@ -110,7 +113,7 @@ void CeresScanMatcher2D::Match(const Eigen::Vector2d& target_translation,
   problem.AddResidualBlock(
       CreateOccupiedSpaceCostFunction2D(
           options_.occupied_space_weight / std::sqrt(static_cast<double>(cloud.size())), cloud,
-          grid),
+          grid, static_cast<float>(options_.unknown_probability)),
       nullptr, pose);
   problem.AddResidualBlock(
       CreateTranslationDeltaCostFunctor2D(options_.translation_weight, target_translation),

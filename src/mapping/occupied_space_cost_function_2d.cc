@@ -11,20 +11,24 @@ namespace mapping {
 namespace {
 
 // Presents a ProbabilityGrid to ceres::BiCubicInterpolator as a row-major (row = y cell,
-// column = x cell) array of correspondence costs 1 - p. Reads outside the grid give the cost of
-// an unknown cell, so the interpolant stays defined (and flat) beyond the map's edge.
+// column = x cell) array of correspondence costs 1 - p. Never-observed cells, and reads outside
+// the grid, give 1 - unknown_probability, so the interpolant stays defined (and flat) beyond
+// the map's edge.
 class GridArrayAdapter {
  public:
   enum { DATA_DIMENSION = 1 };
 
-  explicit GridArrayAdapter(const ProbabilityGrid& grid) : grid_(grid) {}
+  GridArrayAdapter(const ProbabilityGrid& grid, float unknown_probability)
+      : grid_(grid), unknown_probability_(unknown_probability) {}
 
   void GetValue(int row, int column, double* value) const {
-    *value = 1.0 - static_cast<double>(grid_.GetProbability(Eigen::Array2i(column, row)));
+    *value = 1.0 - static_cast<double>(
+                       grid_.GetProbabilityOr(Eigen::Array2i(column, row), unknown_probability_));
   }
 
  private:
   const ProbabilityGrid& grid_;
+  const float unknown_probability_;
 };
 
 // Samples this many cells beyond the grid are all unknown, so the bicubic interpolant (4 x 4
@@ -42,8 +46,12 @@ T ClampToBand(const T& value, int num_cells) {
 class OccupiedSpaceCostFunctor2D {
  public:
   OccupiedSpaceCostFunctor2D(double scaling_factor, const sensor::PointCloud2d& cloud,
-                             const ProbabilityGrid& grid)
-      : scaling_factor_(scaling_factor), cloud_(cloud), grid_(grid), adapter_(grid), interpolator_(adapter_) {}
+                             const ProbabilityGrid& grid, float unknown_probability)
+      : scaling_factor_(scaling_factor),
+        cloud_(cloud),
+        grid_(grid),
+        adapter_(grid, unknown_probability),
+        interpolator_(adapter_) {}
 
   OccupiedSpaceCostFunctor2D(const OccupiedSpaceCostFunctor2D&) = delete;
   OccupiedSpaceCostFunctor2D& operator=(const OccupiedSpaceCostFunctor2D&) = delete;
@@ -82,10 +90,11 @@ class OccupiedSpaceCostFunctor2D {
 
 ceres::CostFunction* CreateOccupiedSpaceCostFunction2D(double scaling_factor,
                                                        const sensor::PointCloud2d& cloud,
-                                                       const ProbabilityGrid& grid) {
+                                                       const ProbabilityGrid& grid,
+                                                       float unknown_probability) {
   assert(!cloud.empty());
   return new ceres::AutoDiffCostFunction<OccupiedSpaceCostFunctor2D, ceres::DYNAMIC, 3>(
-      new OccupiedSpaceCostFunctor2D(scaling_factor, cloud, grid),
+      new OccupiedSpaceCostFunctor2D(scaling_factor, cloud, grid, unknown_probability),
       static_cast<int>(cloud.size()));
 }
 

@@ -12,11 +12,13 @@ namespace mapping {
 // Residuals scaling_factor * (1 - M_smooth(T * p_i)), one per point of `cloud`, over the pose
 // parameter block [x_m, y_m, angle_rad] = T_grid_tracking (Hess et al. 2016, eq. 8). M_smooth
 // is the bicubic interpolation of the cell probabilities, cell centres being the samples;
-// outside the grid the probability is kMinProbability. The returned cost function refers to
+// in never-observed cells and outside the grid the probability is `unknown_probability`
+// (kMinProbability reads the grid as it is). The returned cost function refers to
 // `cloud` and `grid`, which must outlive it; the caller (usually a ceres::Problem) owns it.
 ceres::CostFunction* CreateOccupiedSpaceCostFunction2D(double scaling_factor,
                                                        const sensor::PointCloud2d& cloud,
-                                                       const ProbabilityGrid& grid);
+                                                       const ProbabilityGrid& grid,
+                                                       float unknown_probability);
 
 }  // namespace mapping
 }  // namespace fusemap

@@ -30,6 +30,13 @@ float ProbabilityGrid::GetProbability(const Eigen::Array2i& cell) const {
   return ValueToProbability(cells_[limits_.FlatIndex(cell)]);
 }
 
+float ProbabilityGrid::GetProbabilityOr(const Eigen::Array2i& cell,
+                                        float unknown_probability) const {
+  if (!limits_.Contains(cell)) return unknown_probability;
+  const uint16_t value = cells_[limits_.FlatIndex(cell)] & static_cast<uint16_t>(~kUpdateMarker);
+  return value == kUnknownValue ? unknown_probability : ValueToProbability(value);
+}
+
 uint16_t ProbabilityGrid::GetValue(const Eigen::Array2i& cell) const {
   if (!limits_.Contains(cell)) return kUnknownValue;
   return cells_[limits_.FlatIndex(cell)] & static_cast<uint16_t>(~kUpdateMarker);

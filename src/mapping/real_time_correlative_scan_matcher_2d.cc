@@ -17,6 +17,8 @@ void RealTimeCorrelativeScanMatcherOptions2D::Check(common::OptionChecker* check
   check->Require(translation_delta_cost_weight >= 0.0, "translation_delta_cost_weight",
                  "must be >= 0");
   check->Require(rotation_delta_cost_weight >= 0.0, "rotation_delta_cost_weight", "must be >= 0");
+  check->Require(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability,
+                 "unknown_probability", "must be in [0.1, 0.9]");
 }
 
 bool RealTimeCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {
@@ -30,6 +32,7 @@ RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptio
   reader.Get("angular_search_window_rad", &options.angular_search_window_rad);
   reader.Get("translation_delta_cost_weight", &options.translation_delta_cost_weight);
   reader.Get("rotation_delta_cost_weight", &options.rotation_delta_cost_weight);
+  reader.Get("unknown_probability", &options.unknown_probability);
   reader.CheckOptions(options);
   return options;
 }
@@ -63,6 +66,7 @@ double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_po
       DiscretizeScans(grid.limits(), GenerateRotatedScans(rotated_cloud, params),
                       initial_pose.translation().cast<float>());
 
+  const float unknown_probability = static_cast<float>(options_.unknown_probability);
   bool have_best = false;
   Candidate2D best(params.num_angular_perturbations, 0, 0, params);
   for (int i = 0; i < params.num_scans; ++i) {
@@ -72,7 +76,9 @@ double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_po
         Candidate2D candidate(i, dx, dy, params);
         const Eigen::Array2i offset(dx, dy);
         double sum = 0.0;
-        for (const Eigen::Array2i& cell : scans[i]) sum += grid.GetProbability(cell + offset);
+        for (const Eigen::Array2i& cell : scans[i]) {
+          sum += grid.GetProbabilityOr(cell + offset, unknown_probability);
+        }
         // Cartographer's prior on the distance from the prediction.
         const double penalty =
             std::hypot(candidate.x_m, candidate.y_m) * options_.translation_delta_cost_weight +

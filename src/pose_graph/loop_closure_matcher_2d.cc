@@ -10,6 +10,9 @@ ConstraintBuilderOptions2D::ConstraintBuilderOptions2D() {
   ceres_scan_matcher.translation_weight = 10.0;
   ceres_scan_matcher.rotation_weight = 1.0;
   ceres_scan_matcher.max_num_iterations = 10;
+  // A loop closure refines a match inside a finished submap, where a point in never-observed
+  // space is evidence against the match, not the edge of new space as in local SLAM.
+  ceres_scan_matcher.unknown_probability = mapping::kMinProbability;
 }
 
 void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {

@@ -24,7 +24,8 @@ TEST(OccupiedSpaceCostFunction2DTest, InterpolatesThroughCellCentres) {
   const ProbabilityGrid grid = MakeGrid();
   // Cell (12, 7) has its centre at (0.25, -0.25); the pose moves the point there.
   const sensor::PointCloud2d cloud = {Eigen::Vector2f(0.f, 0.f), Eigen::Vector2f(0.1f, 0.f)};
-  std::unique_ptr<ceres::CostFunction> cost(CreateOccupiedSpaceCostFunction2D(2.0, cloud, grid));
+  std::unique_ptr<ceres::CostFunction> cost(
+      CreateOccupiedSpaceCostFunction2D(2.0, cloud, grid, kMinProbability));
   ASSERT_EQ(cost->num_residuals(), 2);
   const double pose[3] = {0.25, -0.25, 0.0};
   const double* parameters[] = {pose};
@@ -40,19 +41,24 @@ TEST(OccupiedSpaceCostFunction2DTest, InterpolatesThroughCellCentres) {
   EXPECT_NEAR(jacobian[1], 0.0, 1e-9);
 }
 
-TEST(OccupiedSpaceCostFunction2DTest, OutsideTheGridCostsAsUnknown) {
+TEST(OccupiedSpaceCostFunction2DTest, OutsideTheGridAndNeverObservedCostAsUnknown) {
   const ProbabilityGrid grid = MakeGrid();
-  const sensor::PointCloud2d cloud = {Eigen::Vector2f(50.f, -30.f)};
-  std::unique_ptr<ceres::CostFunction> cost(CreateOccupiedSpaceCostFunction2D(1.0, cloud, grid));
-  const double pose[3] = {0.0, 0.0, 0.0};
-  const double* parameters[] = {pose};
-  double residual;
-  double jacobian[3];
-  double* jacobians[] = {jacobian};
-  ASSERT_TRUE(cost->Evaluate(parameters, &residual, jacobians));
-  EXPECT_NEAR(residual, 1.0 - kMinProbability, 1e-6);
-  EXPECT_NEAR(jacobian[0], 0.0, 1e-12);
-  EXPECT_NEAR(jacobian[2], 0.0, 1e-12);
+  // Far outside the grid, and inside it in a cell nothing observed (cell (3, 3)).
+  const sensor::PointCloud2d cloud = {Eigen::Vector2f(50.f, -30.f), Eigen::Vector2f(-0.65f, -0.65f)};
+  for (const float unknown : {kMinProbability, 0.5f}) {
+    std::unique_ptr<ceres::CostFunction> cost(
+        CreateOccupiedSpaceCostFunction2D(1.0, cloud, grid, unknown));
+    const double pose[3] = {0.0, 0.0, 0.0};
+    const double* parameters[] = {pose};
+    double residuals[2];
+    double jacobian[6];
+    double* jacobians[] = {jacobian};
+    ASSERT_TRUE(cost->Evaluate(parameters, residuals, jacobians));
+    EXPECT_NEAR(residuals[0], 1.0 - unknown, 1e-6);
+    EXPECT_NEAR(residuals[1], 1.0 - unknown, 1e-6);
+    EXPECT_NEAR(jacobian[0], 0.0, 1e-12);
+    EXPECT_NEAR(jacobian[2], 0.0, 1e-12);
+  }
 }
 
 }  // namespace

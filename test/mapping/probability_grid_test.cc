@@ -27,6 +27,15 @@ TEST(ProbabilityGridTest, StartsUnknown) {
   EXPECT_FALSE(grid.ComputeKnownBounds(&lo, &hi));
 }
 
+TEST(ProbabilityGridTest, GetProbabilityOrReadsUnknownCellsAsGiven) {
+  ProbabilityGrid grid(SmallLimits());
+  grid.SetProbability(Eigen::Array2i(2, 2), 0.8f);
+  EXPECT_FLOAT_EQ(grid.GetProbabilityOr(Eigen::Array2i(2, 2), 0.5f), grid.GetProbability(Eigen::Array2i(2, 2)));
+  EXPECT_FLOAT_EQ(grid.GetProbabilityOr(Eigen::Array2i(3, 4), 0.5f), 0.5f);
+  EXPECT_FLOAT_EQ(grid.GetProbabilityOr(Eigen::Array2i(-1, 400), 0.5f), 0.5f);
+  EXPECT_FLOAT_EQ(grid.GetProbabilityOr(Eigen::Array2i(3, 4), kMinProbability), kMinProbability);
+}
+
 TEST(ProbabilityGridTest, MarkedCellIsNotUpdatedTwiceInOneScan) {
   ProbabilityGrid grid(SmallLimits());
   const auto hit = ComputeLookupTableToApplyOdds(Odds(0.55f));

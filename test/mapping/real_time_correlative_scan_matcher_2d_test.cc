@@ -54,6 +54,42 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, ExactStartStaysPut) {
   EXPECT_NEAR(pose.angle_rad(), truth.angle_rad(), 1e-9);
 }
 
+// A robot entering new space: the mapped part (x < 0) is observed free (p = 0.4) with a long
+// wall at y = 1 m; the wall ahead, at x = 0.5 m, was never seen. Its points, in unknown cells,
+// must not be dragged back into the observed free space.
+TEST(RealTimeCorrelativeScanMatcher2DTest, NewSpaceCountsAsNoEvidence) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-3.0, -2.0);
+  limits.num_x_cells = 120;
+  limits.num_y_cells = 80;
+  ProbabilityGrid grid(limits);
+  for (int x = 0; x < limits.num_x_cells; ++x) {
+    for (int y = 0; y < limits.num_y_cells; ++y) {
+      const Eigen::Vector2d centre = limits.GetCellCenter(Eigen::Array2i(x, y));
+      if (std::abs(centre.y() - 1.0) < 0.03) {
+        grid.SetProbability(Eigen::Array2i(x, y), 0.9f);
+      } else if (centre.x() < 0.0 && centre.y() < 1.0) {
+        grid.SetProbability(Eigen::Array2i(x, y), 0.4f);
+      }
+    }
+  }
+  sensor::PointCloud2d cloud;
+  for (int i = 0; i < 40; ++i) cloud.emplace_back(-2.0f + 0.1f * i, 1.0f);  // the mapped wall
+  for (int i = 0; i < 40; ++i) cloud.emplace_back(0.5f, -1.5f + 0.06f * i);  // the new wall
+  RealTimeCorrelativeScanMatcherOptions2D options;
+  options.linear_search_window_m = 0.6;
+  common::Rigid2d pose;
+  RealTimeCorrelativeScanMatcher2D(options).Match(common::Rigid2d::Identity(), cloud, grid, &pose);
+  EXPECT_NEAR(pose.x(), 0.0, 0.026);
+  EXPECT_NEAR(pose.y(), 0.0, 0.026);
+  // Reading never-observed cells as the grid stores them (kMinProbability, below the free
+  // space's 0.4) pulls the new wall back into the mapped area by the whole window.
+  options.unknown_probability = kMinProbability;
+  RealTimeCorrelativeScanMatcher2D(options).Match(common::Rigid2d::Identity(), cloud, grid, &pose);
+  EXPECT_LT(pose.x(), -0.5);
+}
+
 TEST(RealTimeCorrelativeScanMatcher2DTest, EmptyCloudReturnsInitialPose) {
   const ProbabilityGrid grid = MakeRoomGrid();
   RealTimeCorrelativeScanMatcher2D matcher(RealTimeCorrelativeScanMatcherOptions2D{});
@@ -74,7 +110,7 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, OptionsValidation) {
 
 TEST(RealTimeCorrelativeScanMatcher2DTest, ParsesOptionsAndRejectsOutOfRange) {
   std::string error;
-  auto reader = common::ConfigReader::FromString("{linear_search_window_m: 0.2, angular_search_window_rad: 0.35, translation_delta_cost_weight: 0.2, rotation_delta_cost_weight: 0.3}", "test", &error);
+  auto reader = common::ConfigReader::FromString("{linear_search_window_m: 0.2, angular_search_window_rad: 0.35, translation_delta_cost_weight: 0.2, rotation_delta_cost_weight: 0.3, unknown_probability: 0.2}", "test", &error);
   ASSERT_NE(reader, nullptr) << error;
   const auto options = ParseRealTimeCorrelativeScanMatcherOptions2D(*reader);
   EXPECT_TRUE(reader->Finish(&error)) << error;
@@ -82,11 +118,14 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, ParsesOptionsAndRejectsOutOfRange) {
   EXPECT_EQ(options.angular_search_window_rad, 0.35);
   EXPECT_EQ(options.translation_delta_cost_weight, 0.2);
   EXPECT_EQ(options.rotation_delta_cost_weight, 0.3);
-  auto bad = common::ConfigReader::FromString("{linear_search_window_m: -1.0}", "bad.yaml", &error);
-  ASSERT_NE(bad, nullptr) << error;
-  ParseRealTimeCorrelativeScanMatcherOptions2D(*bad);
-  EXPECT_FALSE(bad->Finish(&error));
-  EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+  EXPECT_EQ(options.unknown_probability, 0.2);
+  for (const char* yaml : {"{linear_search_window_m: -1.0}", "{unknown_probability: 0.95}"}) {
+    auto bad = common::ConfigReader::FromString(yaml, "bad.yaml", &error);
+    ASSERT_NE(bad, nullptr) << error;
+    ParseRealTimeCorrelativeScanMatcherOptions2D(*bad);
+    EXPECT_FALSE(bad->Finish(&error)) << yaml;
+    EXPECT_NE(error.find("bad.yaml"), std::string::npos) << error;
+  }
 }
 
 }  // namespace

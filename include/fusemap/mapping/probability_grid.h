@@ -33,6 +33,9 @@ class ProbabilityGrid {
 
   // kMinProbability for unknown cells and for cells outside the grid.
   float GetProbability(const Eigen::Array2i& cell) const;
+  // The same, but `unknown_probability` for cells never observed (and outside the grid):
+  // what a scan matcher that counts unexplored space as no evidence reads.
+  float GetProbabilityOr(const Eigen::Array2i& cell, float unknown_probability) const;
   bool IsKnown(const Eigen::Array2i& cell) const;
   uint16_t GetValue(const Eigen::Array2i& cell) const;
   // Sets a cell directly (tests, map loading). The cell must lie inside the grid.

@@ -21,6 +21,9 @@ struct CeresScanMatcherOptions2D {
   double rotation_weight = 40.0;
   int max_num_iterations = 20;
   int num_threads = 1;
+  // The probability the occupied-space cost reads in never-observed cells (and beyond the
+  // grid): 0.5, no evidence, for the reason given at RealTimeCorrelativeScanMatcherOptions2D.
+  double unknown_probability = 0.5;
 
   // Each field's rule, against its key (see common::OptionChecker).
   void Check(common::OptionChecker* check) const;

@@ -17,6 +17,11 @@ struct RealTimeCorrelativeScanMatcherOptions2D {
   double angular_search_window_rad = common::DegToRad(20.0);
   double translation_delta_cost_weight = 1e-1;
   double rotation_delta_cost_weight = 1e-1;
+  // What a scan point scores in a cell never observed. 0.5, no evidence either way: with
+  // kMinProbability (Cartographer's choice, the grid's value there) a scan that sees new
+  // space, as in an open hall or at a corridor's end, is pulled by turning its points onto
+  // the little that is mapped, and local SLAM takes degree-sized heading errors per step.
+  double unknown_probability = 0.5;
 
   // Each field's rule, against its key (see common::OptionChecker).
   void Check(common::OptionChecker* check) const;
@@ -29,8 +34,8 @@ RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptio
 
 // Exhaustive correlative search (Olson 2009) in a small window around a pose prediction, used
 // by local SLAM to give the Ceres matcher a start inside its basin of convergence. Each
-// candidate scores the mean grid probability at its points, damped by its distance from the
-// prediction as in Cartographer.
+// candidate scores the mean grid probability at its points (unknown_probability where the grid
+// has seen nothing), damped by its distance from the prediction as in Cartographer.
 class RealTimeCorrelativeScanMatcher2D {
  public:
   explicit RealTimeCorrelativeScanMatcher2D(const RealTimeCorrelativeScanMatcherOptions2D& options);
