@@ -66,8 +66,10 @@ void CeresScanMatcherOptions2D::Check(common::OptionChecker* check) const {
   check->Require(rotation_weight >= 0.0, "rotation_weight", "must be >= 0");
   check->Require(max_num_iterations >= 1, "max_num_iterations", "must be >= 1");
   check->Require(num_threads >= 1, "num_threads", "must be >= 1");
-  check->Require(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability,
-                 "unknown_probability", "must be in [0.1, 0.9]");
+  // Compared as the float the grid uses: the YAML value 0.1 is a double just below 0.1f.
+  const float unknown = static_cast<float>(unknown_probability);
+  check->Require(unknown >= kMinProbability && unknown <= kMaxProbability, "unknown_probability",
+                 "must be in [0.1, 0.9]");
 }
 
 bool CeresScanMatcherOptions2D::IsValid(std::string* error) const {

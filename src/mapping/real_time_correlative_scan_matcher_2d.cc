@@ -17,8 +17,10 @@ void RealTimeCorrelativeScanMatcherOptions2D::Check(common::OptionChecker* check
   check->Require(translation_delta_cost_weight >= 0.0, "translation_delta_cost_weight",
                  "must be >= 0");
   check->Require(rotation_delta_cost_weight >= 0.0, "rotation_delta_cost_weight", "must be >= 0");
-  check->Require(unknown_probability >= kMinProbability && unknown_probability <= kMaxProbability,
-                 "unknown_probability", "must be in [0.1, 0.9]");
+  // Compared as the float the grid uses: the YAML value 0.1 is a double just below 0.1f.
+  const float unknown = static_cast<float>(unknown_probability);
+  check->Require(unknown >= kMinProbability && unknown <= kMaxProbability, "unknown_probability",
+                 "must be in [0.1, 0.9]");
 }
 
 bool RealTimeCorrelativeScanMatcherOptions2D::IsValid(std::string* error) const {

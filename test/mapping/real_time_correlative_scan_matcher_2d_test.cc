@@ -119,6 +119,13 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, ParsesOptionsAndRejectsOutOfRange) {
   EXPECT_EQ(options.translation_delta_cost_weight, 0.2);
   EXPECT_EQ(options.rotation_delta_cost_weight, 0.3);
   EXPECT_EQ(options.unknown_probability, 0.2);
+  // The range's ends as written in YAML (doubles) are accepted.
+  for (const char* yaml : {"{unknown_probability: 0.1}", "{unknown_probability: 0.9}"}) {
+    auto ends = common::ConfigReader::FromString(yaml, "ends.yaml", &error);
+    ASSERT_NE(ends, nullptr) << error;
+    ParseRealTimeCorrelativeScanMatcherOptions2D(*ends);
+    EXPECT_TRUE(ends->Finish(&error)) << yaml << ": " << error;
+  }
   for (const char* yaml : {"{linear_search_window_m: -1.0}", "{unknown_probability: 0.95}"}) {
     auto bad = common::ConfigReader::FromString(yaml, "bad.yaml", &error);
     ASSERT_NE(bad, nullptr) << error;
