@@ -26,8 +26,7 @@ ProbabilityGrid::ProbabilityGrid(const MapLimits& limits, std::vector<uint16_t> 
 }
 
 float ProbabilityGrid::GetProbability(const Eigen::Array2i& cell) const {
-  if (!limits_.Contains(cell)) return kMinProbability;
-  return ValueToProbability(cells_[limits_.FlatIndex(cell)]);
+  return GetProbabilityOr(cell, kMinProbability);
 }
 
 float ProbabilityGrid::GetProbabilityOr(const Eigen::Array2i& cell,
