@@ -32,6 +32,8 @@ void InitialMatchOptions2D::Check(common::OptionChecker* check) const {
                      near_angular_search_window_rad <= common::kPi,
                  "near_angular_search_window_rad", "must be in [0, pi]");
   check->Require(refresh_every_n_insertions >= 1, "refresh_every_n_insertions", "must be >= 1");
+  check->Require(min_rescore_gain >= 0.0 && min_rescore_gain <= 1.0, "min_rescore_gain",
+                 "must be in [0, 1]");
   // The matcher's keys sit in this stage's own mapping (see ParseInitialMatchOptions2D).
   fast_correlative_scan_matcher.Check(check);
 }
@@ -50,6 +52,8 @@ InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
   reader.Get("near_linear_search_window_m", &options.near_linear_search_window_m);
   reader.Get("near_angular_search_window_rad", &options.near_angular_search_window_rad);
   reader.Get("refresh_every_n_insertions", &options.refresh_every_n_insertions);
+  reader.Get("only_at_window_edge", &options.only_at_window_edge);
+  reader.Get("min_rescore_gain", &options.min_rescore_gain);
   // Read field by field, not with ParseFastCorrelativeScanMatcherOptions2D, so that absent
   // keys keep this stage's defaults rather than loop closure's.
   FastCorrelativeScanMatcherOptions2D& fast = options.fast_correlative_scan_matcher;

@@ -125,7 +125,11 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
   // to the fine correlative answer instead.
   common::Rigid2d prior = predicted;
   bool prior_from_search = false;
-  if (options_.initial_branch_and_bound_match.enabled) {
+  const InitialMatchOptions2D& wide = options_.initial_branch_and_bound_match;
+  if (wide.enabled && wide.only_at_window_edge && options_.use_online_correlative_scan_matching) {
+    return MatchWidenedAtWindowEdge(predicted, cloud, score);
+  }
+  if (wide.enabled) {
     prior_from_search = initial_matcher_.Match(submaps.front(), predicted, cloud, score, &prior);
     if (!prior_from_search) ++stats_.initial_match_rejected;
   }
@@ -134,6 +138,39 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
     *score = real_time_matcher_.Match(prior, cloud, grid, &initial);
   }
   if (prior_from_search) prior = initial;
+  common::Rigid2d refined;
+  ceres::Solver::Summary summary;
+  ceres_matcher_.Match(prior.translation(), initial, cloud, grid, &refined, &summary);
+  return refined;
+}
+
+common::Rigid2d LocalTrajectoryBuilder2D::MatchWidenedAtWindowEdge(
+    const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud, double* score) {
+  const auto submaps = active_submaps_.submaps();
+  const ProbabilityGrid& grid = submaps.front()->grid();
+  common::Rigid2d initial;
+  bool at_edge = false;
+  *score = real_time_matcher_.Match(predicted, cloud, grid, &initial, &at_edge);
+  common::Rigid2d prior = predicted;
+  if (at_edge) {
+    ++stats_.window_edge_matches;
+    double wide_score = 0.0;
+    common::Rigid2d wide_pose;
+    if (initial_matcher_.Match(submaps.front(), predicted, cloud, &wide_score, &wide_pose)) {
+      common::Rigid2d rematched;
+      const double rematched_score = real_time_matcher_.Match(wide_pose, cloud, grid, &rematched);
+      if (rematched_score >= *score + options_.initial_branch_and_bound_match.min_rescore_gain) {
+        ++stats_.wide_matches_taken;
+        *score = rematched_score;
+        initial = rematched;
+        // The prediction was wrong by more than the small window: Ceres is held to the
+        // correlative answer, not pulled back towards it.
+        prior = rematched;
+      }
+    } else {
+      ++stats_.initial_match_rejected;
+    }
+  }
   common::Rigid2d refined;
   ceres::Solver::Summary summary;
   ceres_matcher_.Match(prior.translation(), initial, cloud, grid, &refined, &summary);

@@ -50,9 +50,11 @@ RealTimeCorrelativeScanMatcher2D::RealTimeCorrelativeScanMatcher2D(
 double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
                                                const sensor::PointCloud2d& cloud,
                                                const ProbabilityGrid& grid,
-                                               common::Rigid2d* pose) const {
+                                               common::Rigid2d* pose,
+                                               bool* at_window_edge) const {
   assert(pose != nullptr);
   *pose = initial_pose;
+  if (at_window_edge != nullptr) *at_window_edge = false;
   if (cloud.empty()) return 0.0;
 
   const Eigen::Matrix2f initial_rotation =
@@ -92,6 +94,13 @@ double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_po
         }
       }
     }
+  }
+  if (at_window_edge != nullptr) {
+    const SearchParameters::LinearBounds& bounds = params.linear_bounds[best.scan_index];
+    *at_window_edge = (params.num_scans > 1 &&
+                       (best.scan_index == 0 || best.scan_index == params.num_scans - 1)) ||
+                      best.x_offset_cells == bounds.min_x || best.x_offset_cells == bounds.max_x ||
+                      best.y_offset_cells == bounds.min_y || best.y_offset_cells == bounds.max_y;
   }
   *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),
                           initial_pose.angle_rad() + best.angle_rad);

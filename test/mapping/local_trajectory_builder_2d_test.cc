@@ -220,6 +220,46 @@ TEST(LocalTrajectoryBuilder2DTest, InitialMatchBelowMinScoreKeepsPredictionAndCo
   }
 }
 
+// only_at_window_edge: the wide search runs only where the small window's answer is on its
+// border, and follows the same jumps as running it on every scan.
+TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeTracksLargeJumps) {
+  constexpr int kNumScans = 20;
+  LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
+  options.initial_branch_and_bound_match.only_at_window_edge = true;
+  LocalTrajectoryBuilder2D builder(options);
+  std::vector<common::Rigid2d> estimates;
+  const TrackingError error = TrackJumpyPath(&builder, kNumScans, &estimates);
+  std::printf("jumpy path max error at window edge: %.4f m %.3f deg, %d edge matches, %d taken\n",
+              error.max_m, error.max_rad * 180.0 / common::kPi,
+              builder.stats().window_edge_matches, builder.stats().wide_matches_taken);
+  EXPECT_LT(error.max_m, 0.2);
+  EXPECT_LT(error.max_rad, common::DegToRad(2.0));
+  EXPECT_GT(builder.stats().wide_matches_taken, 0);
+  EXPECT_LE(builder.stats().wide_matches_taken, builder.stats().window_edge_matches);
+  EXPECT_EQ(builder.stats().inserted, kNumScans);
+}
+
+// A path the small window follows by itself: the wide search's answer is never taken (it may
+// run where a scan's best offset is a cell at the window's border), and the poses are bit for
+// bit those without the stage.
+TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeLeavesSmoothPathAlone) {
+  LocalTrajectoryBuilderOptions2D options = TestOptions();
+  options.initial_branch_and_bound_match.enabled = true;
+  options.initial_branch_and_bound_match.only_at_window_edge = true;
+  LocalTrajectoryBuilder2D widened(options);
+  LocalTrajectoryBuilder2D plain(TestOptions());
+  const std::vector<Segment> walls = Room();
+  for (int i = 0; i < 15; ++i) {
+    const common::Rigid2d truth = test_world::ArcPose(1, 0.05 * i);
+    const auto a = widened.AddScan(SimulateScan(walls, truth, 0.1 * i));
+    const auto b = plain.AddScan(SimulateScan(walls, truth, 0.1 * i));
+    ASSERT_TRUE(a.has_value() && b.has_value()) << i;
+    EXPECT_EQ(a->T_local_tracking.translation(), b->T_local_tracking.translation()) << i;
+    EXPECT_EQ(a->T_local_tracking.angle_rad(), b->T_local_tracking.angle_rad()) << i;
+  }
+  EXPECT_EQ(widened.stats().wide_matches_taken, 0);
+}
+
 // Issue 18, item 3: one odometry message at x = 1e300 early in a run hung local SLAM in the
 // grid's growth loop. The absurd prediction is now replaced by the last pose, and tracking
 // carries on from the following odometry.

@@ -54,6 +54,31 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, ExactStartStaysPut) {
   EXPECT_NEAR(pose.angle_rad(), truth.angle_rad(), 1e-9);
 }
 
+// The flag that lets local SLAM widen its search: set when the prediction is further off than
+// the window, clear when the optimum lies inside it.
+TEST(RealTimeCorrelativeScanMatcher2DTest, ReportsBestCandidateOnWindowEdge) {
+  const ProbabilityGrid grid = MakeRoomGrid();
+  const common::Rigid2d truth(-1.0, -0.5, 0.3);
+  const sensor::PointCloud2d cloud = CastScan(truth, 180);
+  RealTimeCorrelativeScanMatcherOptions2D options;
+  options.linear_search_window_m = 0.3;
+  options.angular_search_window_rad = common::DegToRad(10.0);
+  RealTimeCorrelativeScanMatcher2D matcher(options);
+  common::Rigid2d pose;
+  bool at_edge = true;
+  matcher.Match(common::Rigid2d(truth.x() + 0.1, truth.y(), truth.angle_rad() + 0.05), cloud, grid,
+                &pose, &at_edge);
+  EXPECT_FALSE(at_edge);
+  // 25 deg off: the best the window holds is its outermost angle.
+  matcher.Match(common::Rigid2d(truth.x(), truth.y(), truth.angle_rad() + common::DegToRad(25.0)),
+                cloud, grid, &pose, &at_edge);
+  EXPECT_TRUE(at_edge);
+  // 0.4 m off along x: its outermost offset.
+  matcher.Match(common::Rigid2d(truth.x() + 0.4, truth.y(), truth.angle_rad()), cloud, grid, &pose,
+                &at_edge);
+  EXPECT_TRUE(at_edge) << pose.x() - truth.x() << " " << pose.y() - truth.y();
+}
+
 // A robot entering new space: the mapped part (x < 0) is observed free (p = 0.4) with a long
 // wall at y = 1 m; the wall ahead, at x = 0.5 m, was never seen. Its points, in unknown cells,
 // must not be dragged back into the observed free space.

@@ -255,9 +255,11 @@ int Run(const Args& args) {
       bad_stamps, static_cast<long long>(gate.filter().time_resets()));
   std::printf(
       "local_slam: scans=%d inserted=%d too_few_returns=%d out_of_order=%d "
-      "initial_match_rejected=%d absurd_predictions=%d insertions_refused=%d\n",
+      "initial_match_rejected=%d window_edge_matches=%d wide_matches_taken=%d "
+      "absurd_predictions=%d insertions_refused=%d\n",
       local.scans, local.inserted, local.too_few_returns, local.out_of_order,
-      local.initial_match_rejected, local.absurd_predictions, local.insertions_refused);
+      local.initial_match_rejected, local.window_edge_matches, local.wide_matches_taken,
+      local.absurd_predictions, local.insertions_refused);
   std::printf(
       "global_slam: nodes=%d submaps=%d loop_closure_searches=%d loop_closures_accepted=%d "
       "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f "

@@ -88,6 +88,11 @@ class LocalTrajectoryBuilder2D {
     // Scans whose initial branch-and-bound match stayed below min_score (the prediction was
     // kept). Not in checkpoints: map_builder_state_codec predates it.
     int initial_match_rejected = 0;
+    // With initial_branch_and_bound_match.only_at_window_edge: scans whose real-time match
+    // ended on its window's border (the wide search ran), and those whose pose came from the
+    // wide search. Not in checkpoints either.
+    int window_edge_matches = 0;
+    int wide_matches_taken = 0;
     // Scans whose extrapolated pose jumped absurdly (kMaxPredictedJumpM) from the last pose,
     // matched from a prediction without odometry instead; scans whose data no submap could hold (a pose too
     // far away: ProbabilityGrid::kMaxCells), not inserted. Not in checkpoints either.
@@ -125,6 +130,9 @@ class LocalTrajectoryBuilder2D {
   bool IsPlausiblePrediction(const common::Rigid2d& predicted) const;
   common::Rigid2d ScanMatch(const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
                             double* score);
+  // ScanMatch with initial_branch_and_bound_match.only_at_window_edge (see there).
+  common::Rigid2d MatchWidenedAtWindowEdge(const common::Rigid2d& predicted,
+                                           const sensor::PointCloud2d& cloud, double* score);
 
   LocalTrajectoryBuilderOptions2D options_;
   ActiveSubmaps2D active_submaps_;

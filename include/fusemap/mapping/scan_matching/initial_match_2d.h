@@ -41,6 +41,13 @@ struct InitialMatchOptions2D {
   // the search against the current grid, so a builder restored from a checkpoint (which starts
   // with no grids) continues exactly; larger values trade that for less precomputation.
   int refresh_every_n_insertions = 1;
+  // If true, the search runs only for a scan whose real-time correlative match landed on the
+  // border of its small window (the prediction was further off than that window allows: a
+  // sharp turn with poor odometry, a jump), and its answer is taken only if the real-time
+  // match started from it scores at least min_rescore_gain above the plain one. Scans the
+  // small window already explains cost nothing extra and are matched as without this stage.
+  bool only_at_window_edge = false;
+  double min_rescore_gain = 0.01;
 
   InitialMatchOptions2D();
   // Each field's rule, against its key (see common::OptionChecker).
@@ -51,6 +58,7 @@ struct InitialMatchOptions2D {
 
 // Keys: enabled, matching_resolution_m, unknown_probability, unknown_padding_m, min_score_gain,
 // near_linear_search_window_m, near_angular_search_window_rad, refresh_every_n_insertions,
+// only_at_window_edge, min_rescore_gain,
 // linear_search_window_m, angular_search_window_rad, branch_and_bound_depth, min_score,
 // translation_delta_cost_weight, rotation_delta_cost_weight (the last six as in
 // fast_correlative_scan_matcher; the prior is on the extrapolated pose).

@@ -41,9 +41,12 @@ class RealTimeCorrelativeScanMatcher2D {
   explicit RealTimeCorrelativeScanMatcher2D(const RealTimeCorrelativeScanMatcherOptions2D& options);
 
   // `cloud` is in the tracking frame; `initial_pose` and *pose are T_grid_tracking. Returns the
-  // best candidate's score (0 for an empty cloud, in which case *pose = initial_pose).
+  // best candidate's score (0 for an empty cloud, in which case *pose = initial_pose). If
+  // `at_window_edge` is given, it says whether the best candidate lies on the border of the
+  // search window (outermost angle or offset): the true optimum may then lie outside it.
   double Match(const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud,
-               const ProbabilityGrid& grid, common::Rigid2d* pose) const;
+               const ProbabilityGrid& grid, common::Rigid2d* pose,
+               bool* at_window_edge = nullptr) const;
 
  private:
   RealTimeCorrelativeScanMatcherOptions2D options_;
