@@ -6,7 +6,8 @@
 #       demo (tools/demo.sh, outputs in build-asan/demo).
 # tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd and fusemap_sim,
 #       simulates 6 s of the hall (fusemap_sim --threads 2) and replays it through fusemapd --threads 2 from
-#       file://...?speed=0 (outputs in build-tsan/replay).
+#       file://...?speed=0 (outputs in build-tsan/replay), then once more with the ORB visual
+#       loop checker on (visual_loop.enabled: its own thread; outputs in build-tsan/replay/visual).
 # ASan, LSan and TSan reports are written to BUILD/sanitizer-logs/ (so one in a child whose
 # exit code a test expects to be nonzero still counts), UBSan ones to stderr with exit code 86.
 # The run fails if any report was written or any step failed. Exit codes: 0 clean, 1 a step
@@ -17,7 +18,7 @@ mode=${1:-asan}
 case "$mode" in
   asan) build_dir=build-asan sanitize=address,undefined ;;
   tsan) build_dir=build-tsan sanitize=thread ;;
-  --help | -h) sed -n '2,13p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help | -h) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "usage: bash tools/run_sanitizers.sh [asan|tsan]" >&2; exit 2 ;;
 esac
 launcher=()
@@ -56,6 +57,13 @@ else
   echo "== fusemapd --threads 2 over file://$PWD/$out/sim.lcm?speed=0 (TSan)"
   "$build_dir/tools/fusemapd/fusemapd" --config config/daemon.yaml \
     --lcm-url "file://$PWD/$out/sim.lcm?speed=0" --out "$out/daemon" --threads 2 --quiet ||
+    status=1
+  echo "== the same with the visual loop checker's thread (visual_loop.enabled: true)"
+  # daemon.yaml has no visual_loop: section (a repeated key would be refused), so one is added.
+  grep -q '^visual_loop:' config/daemon.yaml && { echo "daemon.yaml has visual_loop: now" >&2; exit 1; }
+  { cat config/daemon.yaml; printf '\nvisual_loop:\n  enabled: true\n'; } >"$out/daemon_visual.yaml"
+  "$build_dir/tools/fusemapd/fusemapd" --config "$out/daemon_visual.yaml" \
+    --lcm-url "file://$PWD/$out/sim.lcm?speed=0" --out "$out/visual" --threads 2 --quiet ||
     status=1
 fi
 
