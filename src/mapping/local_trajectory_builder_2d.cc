@@ -126,10 +126,12 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
   common::Rigid2d prior = predicted;
   bool prior_from_search = false;
   const InitialMatchOptions2D& wide = options_.initial_branch_and_bound_match;
-  if (wide.enabled && wide.only_at_window_edge && options_.use_online_correlative_scan_matching) {
-    return MatchWidenedAtWindowEdge(predicted, cloud, score);
-  }
-  if (wide.enabled) {
+  if (wide.enabled && wide.only_at_window_edge) {
+    // Without the real-time matcher there is no window whose edge would call for the search.
+    if (options_.use_online_correlative_scan_matching) {
+      return MatchWidenedAtWindowEdge(predicted, cloud, score);
+    }
+  } else if (wide.enabled) {
     prior_from_search = initial_matcher_.Match(submaps.front(), predicted, cloud, score, &prior);
     if (!prior_from_search) ++stats_.initial_match_rejected;
   }

@@ -260,6 +260,26 @@ TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeLeavesSmoothPathAlone) 
   EXPECT_EQ(widened.stats().wide_matches_taken, 0);
 }
 
+// With Ceres alone (no real-time window, as in sim.yaml) only_at_window_edge never searches
+// wide: the poses are those without the stage, not those of a search on every scan.
+TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeNeedsTheRealTimeMatcher) {
+  LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
+  options.use_online_correlative_scan_matching = false;
+  options.initial_branch_and_bound_match.only_at_window_edge = true;
+  LocalTrajectoryBuilder2D widened(options);
+  options.initial_branch_and_bound_match.enabled = false;
+  LocalTrajectoryBuilder2D plain(options);
+  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
+  TrackJumpyPath(&widened, 6, &widened_estimates);
+  TrackJumpyPath(&plain, 6, &plain_estimates);
+  ASSERT_EQ(widened_estimates.size(), plain_estimates.size());
+  for (size_t i = 0; i < plain_estimates.size(); ++i) {
+    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
+    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
+  }
+  EXPECT_EQ(widened.stats().window_edge_matches, 0);
+}
+
 // Issue 18, item 3: one odometry message at x = 1e300 early in a run hung local SLAM in the
 // grid's growth loop. The absurd prediction is now replaced by the last pose, and tracking
 // carries on from the following odometry.

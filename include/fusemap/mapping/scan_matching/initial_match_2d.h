@@ -46,6 +46,7 @@ struct InitialMatchOptions2D {
   // sharp turn with poor odometry, a jump), and its answer is taken only if the real-time
   // match started from it scores at least min_rescore_gain above the plain one. Scans the
   // small window already explains cost nothing extra and are matched as without this stage.
+  // Without use_online_correlative_scan_matching the stage then never runs.
   bool only_at_window_edge = false;
   double min_rescore_gain = 0.01;
 
