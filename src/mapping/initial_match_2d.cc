@@ -10,13 +10,15 @@ namespace fusemap {
 namespace mapping {
 
 InitialMatchOptions2D::InitialMatchOptions2D() {
-  // Local SLAM's motion between scans, not loop closure's drift: a smaller default window.
-  fast_correlative_scan_matcher.linear_search_window_m = 2.0;
-  fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(30.0);
-  fast_correlative_scan_matcher.branch_and_bound_depth = 5;
-  // A cell hit once holds hit_probability (0.55 by default) and free space ~0.49, so a scan
-  // matched to a young submap scores just above 0.5.
-  fast_correlative_scan_matcher.min_score = 0.5;
+  // Local SLAM's motion between scans, not loop closure's drift: a smaller window, a few times
+  // the real-time one (config/default.yaml).
+  fast_correlative_scan_matcher.linear_search_window_m = 0.5;
+  fast_correlative_scan_matcher.angular_search_window_rad = 0.5;
+  fast_correlative_scan_matcher.branch_and_bound_depth = 4;
+  // Low: the real-time match started from the answer decides whether it is taken.
+  fast_correlative_scan_matcher.min_score = 0.2;
+  // Of two offsets that score alike (a corridor), the nearer the prediction.
+  fast_correlative_scan_matcher.translation_delta_cost_weight = 0.5;
 }
 
 void InitialMatchOptions2D::Check(common::OptionChecker* check) const {

@@ -26,30 +26,137 @@ class TempConfig {
   std::string path_;
 };
 
-TEST(SlamConfigTest, LoadsIntelConfig) {
+// carmen.yaml states the sensor only; the rest is the default profile.
+TEST(SlamConfigTest, LoadsCarmenConfig) {
   SlamConfig config;
   std::string error;
-  ASSERT_TRUE(LoadSlamConfig(std::string(FUSEMAP_SOURCE_DIR) + "/config/intel.yaml", &config,
+  ASSERT_TRUE(LoadSlamConfig(std::string(FUSEMAP_SOURCE_DIR) + "/config/carmen.yaml", &config,
                              &error))
       << error;
   EXPECT_EQ(config.channels.lidar, "LIDAR");
   EXPECT_EQ(config.channels.odometry, "ODOMETRY");
   EXPECT_DOUBLE_EQ(config.lidar.range_max_m, 81.0);
   const auto& local = config.map_builder.local_slam;
-  EXPECT_EQ(local.submaps.num_range_data, 35);
   EXPECT_FALSE(local.use_imu);
+  EXPECT_EQ(local.submaps.num_range_data, 35);
   EXPECT_FLOAT_EQ(local.range_gate.max_range_m, 30.f);
   EXPECT_DOUBLE_EQ(local.ceres_scan_matcher.occupied_space_weight, 10.0);
+  EXPECT_TRUE(local.initial_branch_and_bound_match.enabled);
+  EXPECT_TRUE(local.initial_branch_and_bound_match.only_at_window_edge);
   const auto& global = config.map_builder.global_slam;
   EXPECT_EQ(global.optimize_every_n_nodes, 35);
-  EXPECT_DOUBLE_EQ(global.constraint_builder.sampling_ratio, 0.3);
   EXPECT_DOUBLE_EQ(global.constraint_builder.loop_closure_translation_weight, 1.1e6);
-  EXPECT_DOUBLE_EQ(global.constraint_builder.loop_closure_rotation_weight, 1e7);
   EXPECT_DOUBLE_EQ(global.constraint_builder.fast_correlative_scan_matcher.linear_search_window_m,
                    4.0);
-  EXPECT_EQ(global.final_optimization_iterations, 200);
   EXPECT_TRUE(config.map_builder.IsValid(&error)) << error;
 }
+
+SlamConfig LoadOrFail(const std::string& path) {
+  SlamConfig config;
+  std::string error;
+  EXPECT_TRUE(LoadSlamConfig(path, &config, &error)) << error;
+  return config;
+}
+
+#define EXPECT_SAME(field) EXPECT_EQ(profile.field, defaults.field) << #field
+
+// config/default.yaml is the built-in defaults written out (issue 14): a profile that states only
+// its sensor gets exactly what default.yaml lists.
+TEST(SlamConfigTest, DefaultProfileEqualsTheBuiltInDefaults) {
+  const TempConfig empty("{}\n");
+  const SlamConfig built_in = LoadOrFail(empty.path());
+  const SlamConfig file = LoadOrFail(std::string(FUSEMAP_SOURCE_DIR) + "/config/default.yaml");
+
+  EXPECT_EQ(file.channels.lidar, built_in.channels.lidar);
+  EXPECT_EQ(file.channels.odometry, built_in.channels.odometry);
+  EXPECT_EQ(file.channels.imu, built_in.channels.imu);
+  EXPECT_EQ(file.channels.rgbd, built_in.channels.rgbd);
+  EXPECT_EQ(file.channels.pose, built_in.channels.pose);
+  EXPECT_EQ(file.lidar.frame, built_in.lidar.frame);
+  EXPECT_EQ(file.lidar.range_min_m, built_in.lidar.range_min_m);
+  EXPECT_EQ(file.lidar.range_max_m, built_in.lidar.range_max_m);
+
+  {
+    const auto& profile = file.map_builder.local_slam;
+    const auto& defaults = built_in.map_builder.local_slam;
+    EXPECT_SAME(T_tracking_laser.x());
+    EXPECT_SAME(T_tracking_laser.y());
+    EXPECT_SAME(T_tracking_laser.angle_rad());
+    EXPECT_SAME(range_gate.min_range_m);
+    EXPECT_SAME(range_gate.max_range_m);
+    EXPECT_SAME(range_gate.insert_misses);
+    EXPECT_SAME(range_gate.missing_data_ray_length_m);
+    EXPECT_SAME(voxel_filter_size_m);
+    EXPECT_SAME(adaptive_voxel_filter.max_length_m);
+    EXPECT_SAME(adaptive_voxel_filter.min_num_points);
+    EXPECT_SAME(adaptive_voxel_filter.max_range_m);
+    EXPECT_SAME(loop_closure_adaptive_voxel_filter.max_length_m);
+    EXPECT_SAME(loop_closure_adaptive_voxel_filter.min_num_points);
+    EXPECT_SAME(loop_closure_adaptive_voxel_filter.max_range_m);
+    EXPECT_SAME(min_num_returns);
+    EXPECT_SAME(initial_branch_and_bound_match.enabled);
+    EXPECT_SAME(initial_branch_and_bound_match.only_at_window_edge);
+    EXPECT_SAME(initial_branch_and_bound_match.min_rescore_gain);
+    EXPECT_SAME(initial_branch_and_bound_match.matching_resolution_m);
+    EXPECT_SAME(initial_branch_and_bound_match.unknown_probability);
+    EXPECT_SAME(initial_branch_and_bound_match.unknown_padding_m);
+    EXPECT_SAME(initial_branch_and_bound_match.refresh_every_n_insertions);
+    EXPECT_SAME(initial_branch_and_bound_match.min_score_gain);
+    EXPECT_SAME(initial_branch_and_bound_match.near_linear_search_window_m);
+    EXPECT_SAME(initial_branch_and_bound_match.near_angular_search_window_rad);
+    EXPECT_SAME(initial_branch_and_bound_match.fast_correlative_scan_matcher.linear_search_window_m);
+    EXPECT_SAME(
+        initial_branch_and_bound_match.fast_correlative_scan_matcher.angular_search_window_rad);
+    EXPECT_SAME(initial_branch_and_bound_match.fast_correlative_scan_matcher.branch_and_bound_depth);
+    EXPECT_SAME(initial_branch_and_bound_match.fast_correlative_scan_matcher.min_score);
+    EXPECT_SAME(
+        initial_branch_and_bound_match.fast_correlative_scan_matcher.translation_delta_cost_weight);
+    EXPECT_SAME(
+        initial_branch_and_bound_match.fast_correlative_scan_matcher.rotation_delta_cost_weight);
+    EXPECT_SAME(use_online_correlative_scan_matching);
+    EXPECT_SAME(real_time_correlative_scan_matcher.linear_search_window_m);
+    EXPECT_SAME(real_time_correlative_scan_matcher.angular_search_window_rad);
+    EXPECT_SAME(real_time_correlative_scan_matcher.translation_delta_cost_weight);
+    EXPECT_SAME(real_time_correlative_scan_matcher.rotation_delta_cost_weight);
+    EXPECT_SAME(real_time_correlative_scan_matcher.unknown_probability);
+    EXPECT_SAME(ceres_scan_matcher.occupied_space_weight);
+    EXPECT_SAME(ceres_scan_matcher.translation_weight);
+    EXPECT_SAME(ceres_scan_matcher.rotation_weight);
+    EXPECT_SAME(ceres_scan_matcher.max_num_iterations);
+    EXPECT_SAME(ceres_scan_matcher.unknown_probability);
+    EXPECT_SAME(motion_filter.max_time_s);
+    EXPECT_SAME(motion_filter.max_distance_m);
+    EXPECT_SAME(motion_filter.max_angle_rad);
+    EXPECT_SAME(submaps.num_range_data);
+    EXPECT_SAME(submaps.resolution_m);
+    EXPECT_SAME(submaps.range_data_inserter.hit_probability);
+    EXPECT_SAME(submaps.range_data_inserter.miss_probability);
+    EXPECT_SAME(submaps.range_data_inserter.insert_free_space);
+    EXPECT_SAME(use_odometry);
+    EXPECT_SAME(use_imu);
+    EXPECT_SAME(pose_queue_duration_s);
+  }
+  {
+    const auto& profile = file.map_builder.global_slam;
+    const auto& defaults = built_in.map_builder.global_slam;
+    EXPECT_SAME(optimize_every_n_nodes);
+    EXPECT_SAME(constraint_builder.sampling_ratio);
+    EXPECT_SAME(constraint_builder.max_constraint_distance_m);
+    EXPECT_SAME(constraint_builder.fast_correlative_scan_matcher.linear_search_window_m);
+    EXPECT_SAME(constraint_builder.fast_correlative_scan_matcher.angular_search_window_rad);
+    EXPECT_SAME(constraint_builder.fast_correlative_scan_matcher.branch_and_bound_depth);
+    EXPECT_SAME(constraint_builder.fast_correlative_scan_matcher.min_score);
+    EXPECT_SAME(constraint_builder.loop_closure_translation_weight);
+    EXPECT_SAME(constraint_builder.loop_closure_rotation_weight);
+    EXPECT_SAME(matcher_translation_weight);
+    EXPECT_SAME(matcher_rotation_weight);
+    EXPECT_SAME(local_slam_translation_weight);
+    EXPECT_SAME(local_slam_rotation_weight);
+    EXPECT_SAME(final_optimization_iterations);
+  }
+}
+
+#undef EXPECT_SAME
 
 TEST(SlamConfigTest, EmptyFileGivesDefaults) {
   const TempConfig file("{}\n");

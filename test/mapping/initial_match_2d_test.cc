@@ -71,6 +71,10 @@ TEST(InitialMatcher2DTest, FindsAPoseFarFromThePredictionAndCachesGrids) {
   options.enabled = true;
   options.matching_resolution_m = 0.2;
   options.refresh_every_n_insertions = 3;
+  // Wider than the default (local SLAM's window-edge search) and without its prior.
+  options.fast_correlative_scan_matcher.linear_search_window_m = 2.0;
+  options.fast_correlative_scan_matcher.angular_search_window_rad = common::DegToRad(30.0);
+  options.fast_correlative_scan_matcher.translation_delta_cost_weight = 0.0;
   InitialMatcher2D matcher(options);
   double score = 0.0;
   common::Rigid2d pose;

@@ -17,7 +17,7 @@ namespace mapping {
 
 struct SubmapsOptions {
   // Range data per submap before the next one starts; each submap ends up with twice this.
-  int num_range_data = 90;
+  int num_range_data = 35;
   double resolution_m = 0.05;
   // A grid finer than 5 mm could not hold a laser's range within ProbabilityGrid::kMaxCells;
   // coarser than 1 m maps nothing. More range data per submap than this never finishes one.

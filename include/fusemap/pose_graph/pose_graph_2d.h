@@ -24,7 +24,7 @@ namespace pose_graph {
 
 struct PoseGraphOptions2D {
   // Optimise after this many new nodes; 0 disables loop closure and optimisation entirely.
-  int optimize_every_n_nodes = 90;
+  int optimize_every_n_nodes = 35;
   ConstraintBuilderOptions2D constraint_builder;
   OptimizationOptions optimization;
   // Weights of the node-in-submap constraints from local SLAM (Cartographer's matcher_*).

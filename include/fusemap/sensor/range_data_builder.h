@@ -14,7 +14,7 @@ namespace sensor {
 // matching. Beams without a usable return still carve free space up to
 // missing_data_ray_length_m (Cartographer's missing_data_ray_length).
 struct RangeGateOptions {
-  float min_range_m = 0.f;
+  float min_range_m = 0.1f;
   float max_range_m = 30.f;
   // Turns no-return beams into misses; off for sensors whose "no return" may mean "blocked".
   bool insert_misses = true;

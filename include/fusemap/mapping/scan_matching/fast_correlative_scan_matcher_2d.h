@@ -17,8 +17,9 @@ namespace fusemap {
 namespace mapping {
 
 struct FastCorrelativeScanMatcherOptions2D {
-  double linear_search_window_m = 7.0;
-  double angular_search_window_rad = common::DegToRad(30.0);
+  // Loop closure's window around where the graph puts a node (config/default.yaml).
+  double linear_search_window_m = 4.0;
+  double angular_search_window_rad = 0.35;
   int branch_and_bound_depth = 7;
   // The threshold callers (the constraint builder) pass to Match for local searches.
   double min_score = 0.55;
