@@ -22,8 +22,9 @@ struct VisualLoopConfig {
   std::shared_ptr<const visual_loop::Vocabulary> loaded_vocabulary;
   visual_loop::VisualLoopCheckerOptions checker;
   visual_loop::ArbitrationOptions arbitration;
-  // Weights of the loop constraints the checker adds or substitutes (as the laser ones,
-  // global_slam.constraint_builder.loop_closure_*_weight, by default).
+  // Weights of the loop constraints the checker adds or substitutes: by default the laser
+  // loop weights of config/sim.yaml (Cartographer's), the profile the checker was tuned in;
+  // the default profile's laser loops weigh 100x that.
   double translation_weight = 1.1e4;
   double rotation_weight = 1e5;
   // A laser loop of node N is checked against the keyframe nearest N only if that keyframe's
