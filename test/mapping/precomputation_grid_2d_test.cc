@@ -47,7 +47,7 @@ TEST(PrecomputationGrid2DTest, QuantisationEndsAndScore) {
   EXPECT_LT(PrecomputationScore(1000, 10), PrecomputationScore(1001, 10));
 }
 
-TEST(PrecomputationGrid2DTest, EveryDepthEqualsNaiveWindowMax) {
+TEST(PrecomputationGrid2DTest, EveryDepthBoundsItsWindowAsDocumented) {
   for (unsigned seed : {1u, 2u, 3u}) {
     const ProbabilityGrid grid = MakeRandomGrid(37 + seed, 23, seed);
     const PrecomputationGridStack2D stack(grid, 5);
@@ -56,12 +56,35 @@ TEST(PrecomputationGrid2DTest, EveryDepthEqualsNaiveWindowMax) {
       const PrecomputationGrid2D& level = stack.Get(depth);
       const int width = 1 << depth;
       ASSERT_EQ(level.width_cells(), width);
-      // Reach a little beyond the stored area on every side, where the value must be 0.
-      for (int y = -width - 2; y < grid.limits().num_y_cells + 2; ++y) {
-        for (int x = -width - 2; x < grid.limits().num_x_cells + 2; ++x) {
+      // Reach beyond the stored area on every side, where the value must be 0.
+      for (int y = -2 * width - 2; y < grid.limits().num_y_cells + 2; ++y) {
+        for (int x = -2 * width - 2; x < grid.limits().num_x_cells + 2; ++x) {
           const Eigen::Array2i cell(x, y);
-          ASSERT_EQ(level.GetValue(cell), NaiveWindowMax(grid, cell, width))
-              << "seed " << seed << " depth " << depth << " cell " << x << "," << y;
+          const int value = level.GetValue(cell);
+          const int window_max = NaiveWindowMax(grid, cell, width);
+          if (depth <= 3) {
+            ASSERT_EQ(value, window_max) << "seed " << seed << " depth " << depth << " cell " << x
+                                         << "," << y;
+            continue;
+          }
+          // Deeper: the maximum over the nine blocks of w / 8 from the cell's block on.
+          const int block = width / 8;
+          const auto block_start = [block](int c) {
+            return c >= 0 ? c / block * block : -((-c + block - 1) / block) * block;
+          };
+          const Eigen::Array2i start(block_start(x), block_start(y));
+          int coverage_max = 0;
+          for (int dy = 0; dy < 9 * block; ++dy) {
+            for (int dx = 0; dx < 9 * block; ++dx) {
+              coverage_max = std::max<int>(
+                  coverage_max, ProbabilityToPrecomputationValue(
+                                    grid.GetProbability(start + Eigen::Array2i(dx, dy))));
+            }
+          }
+          ASSERT_GE(value, window_max) << "seed " << seed << " depth " << depth << " cell " << x
+                                       << "," << y;
+          ASSERT_EQ(value, coverage_max) << "seed " << seed << " depth " << depth << " cell " << x
+                                         << "," << y;
         }
       }
     }
@@ -74,12 +97,29 @@ TEST(PrecomputationGrid2DTest, SingleOccupiedCellSpreadsBackwards) {
   limits.num_y_cells = 8;
   ProbabilityGrid grid(limits);
   grid.SetProbability(Eigen::Array2i(5, 2), kMaxProbability);
-  const PrecomputationGridStack2D stack(grid, 2);
-  // Width 4: windows starting at x in [2, 5] and y in [-1, 2] contain (5, 2).
+  const PrecomputationGridStack2D stack(grid, 4);
+  // Width 4 (exact): windows starting at x in [2, 5] and y in [-1, 2] contain (5, 2).
   EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(2, -1)), 255);
   EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(5, 2)), 255);
   EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(1, 2)), 0);
   EXPECT_EQ(stack.Get(2).GetValue(Eigen::Array2i(5, 3)), 0);
+  // Width 16, blocks of 2: (5, 2) is in block (2, 1), reached from blocks x in [-6, 2] and
+  // y in [-7, 1], i.e. from cells x in [-12, 5] and y in [-14, 3].
+  EXPECT_EQ(stack.Get(4).GetValue(Eigen::Array2i(-12, -14)), 255);
+  EXPECT_EQ(stack.Get(4).GetValue(Eigen::Array2i(5, 3)), 255);
+  EXPECT_EQ(stack.Get(4).GetValue(Eigen::Array2i(-13, 2)), 0);
+  EXPECT_EQ(stack.Get(4).GetValue(Eigen::Array2i(5, 4)), 0);
+  EXPECT_EQ(stack.Get(4).GetValue(Eigen::Array2i(6, 2)), 0);
+}
+
+TEST(PrecomputationGrid2DTest, DeepPyramidTakesUnderFiveBytesPerCell) {
+  const ProbabilityGrid grid = MakeRandomGrid(400, 300, 4);
+  const PrecomputationGridStack2D stack(grid, 7);
+  const double cells = 400.0 * 300.0;
+  // One byte per cell at depths 0 to 3, a quarter of the previous depth's below (8 when every
+  // depth was stored per cell).
+  EXPECT_LT(stack.bytes() / cells, 5.0);
+  EXPECT_GT(stack.bytes() / cells, 4.0);
 }
 
 }  // namespace

@@ -18,35 +18,45 @@ uint8_t ProbabilityToPrecomputationValue(float probability);
 // units. Strictly increasing in value_sum.
 double PrecomputationScore(long value_sum, int num_points);
 
-// One level of the branch-and-bound pyramid (Hess et al. 2016, Sec. V-C, eq. 14): for width
-// w = 2^depth, the value at cell c is the maximum quantised probability over the base-grid cells
-// c + [0, w) x [0, w), 0 where that window lies off the grid. It is stored for every c whose
-// window touches the grid, i.e. c in [-(w - 1), num_cells - 1] per axis.
+// One level of the branch-and-bound pyramid (Hess et al. 2016, Sec. V-C, eq. 14). For width
+// w = 2^depth, GetValue(c) must bound the quantised probabilities over the base-grid cells
+// c + [0, w) x [0, w) (0 off the grid) from above; branch and bound stays exact with any such
+// bound, and the tighter it is, the more it prunes.
+//
+// Depths 0 to 3 store that window maximum exactly, one byte per base cell each. Deeper
+// levels store one value per block of b = w / 8 base cells per axis: the maximum over the
+// nine blocks that a window of w starting in the block reaches (1.125 w). So the pyramid
+// takes ~4.3 bytes per base cell, not one per cell and depth (8 at depth 7), and prunes
+// nearly as well.
 class PrecomputationGrid2D {
  public:
   // Depth 0 (w = 1): the grid's own cells, quantised.
   explicit PrecomputationGrid2D(const ProbabilityGrid& grid);
-  // The next depth (twice the width), in O(cells) by taking the maximum of two half-width
-  // windows along x, then along y.
-  static PrecomputationGrid2D FromFinerLevel(const PrecomputationGrid2D& finer);
 
   int width_cells() const { return width_cells_; }
-  // Max over the window at `cell` (base-grid indices); 0 outside the stored area.
+  // Memory held by the values.
+  size_t bytes() const { return values_.capacity(); }
+  // The bound for the window at `cell` (base-grid indices); 0 where the window is off the grid.
   int GetValue(const Eigen::Array2i& cell) const {
-    const int x = cell.x() - min_cell_.x();
-    const int y = cell.y() - min_cell_.y();
+    // Arithmetic shift: floor division by the block size, negative cells included.
+    const int x = (cell.x() >> block_shift_) - min_block_.x();
+    const int y = (cell.y() >> block_shift_) - min_block_.y();
     if (x < 0 || y < 0 || x >= size_x_ || y >= size_y_) return 0;
-    return cells_[static_cast<size_t>(y) * size_x_ + x];
+    return values_[static_cast<size_t>(y) * size_x_ + x];
   }
 
  private:
-  PrecomputationGrid2D(const Eigen::Array2i& min_cell, int size_x, int size_y, int width_cells);
+  friend class PrecomputationGridStack2D;
+  // Values for blocks min_block .. min_block + size - 1 (per axis) of 2^block_shift cells.
+  PrecomputationGrid2D(int width_cells, int block_shift, const Eigen::Array2i& min_block,
+                       int size_x, int size_y);
 
-  Eigen::Array2i min_cell_;  // base-grid index of the first stored cell
+  int width_cells_;
+  int block_shift_;
+  Eigen::Array2i min_block_;
   int size_x_;
   int size_y_;
-  int width_cells_;
-  std::vector<uint8_t> cells_;  // row-major, y outer
+  std::vector<uint8_t> values_;  // row-major, y outer
 };
 
 // Precomputation grids for depths 0 .. max_depth.
@@ -56,6 +66,8 @@ class PrecomputationGridStack2D {
 
   const PrecomputationGrid2D& Get(int depth) const { return grids_.at(depth); }
   int max_depth() const { return static_cast<int>(grids_.size()) - 1; }
+  // Memory held by all depths' values.
+  size_t bytes() const;
 
  private:
   std::vector<PrecomputationGrid2D> grids_;
