@@ -72,8 +72,14 @@ InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
 ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unknown_probability,
                             int pad_cells) {
   assert(factor >= 1 && pad_cells >= 0);
-  const ProbabilityGrid cropped = grid.Cropped();
-  const MapLimits& fine = cropped.limits();
+  // The known part of `grid`, read in place (local SLAM's submap grows to several times it).
+  Eigen::Array2i known_min = Eigen::Array2i::Zero();
+  Eigen::Array2i known_max(grid.limits().num_x_cells - 1, grid.limits().num_y_cells - 1);
+  grid.ComputeKnownBounds(&known_min, &known_max);
+  MapLimits fine = grid.limits();
+  fine.origin_m += fine.resolution_m * known_min.cast<double>().matrix();
+  fine.num_x_cells = known_max.x() - known_min.x() + 1;
+  fine.num_y_cells = known_max.y() - known_min.y() + 1;
   MapLimits coarse = fine;
   coarse.resolution_m = fine.resolution_m * factor;
   coarse.origin_m -= Eigen::Vector2d::Constant(pad_cells * coarse.resolution_m);
@@ -87,7 +93,7 @@ ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unkno
     for (int x = 0; x < fine.num_x_cells; ++x) {
       const Eigen::Array2i cell(x / factor + pad_cells, y / factor + pad_cells);
       uint16_t& value = cells[coarse.FlatIndex(cell)];
-      value = std::max(value, cropped.cells()[fine.FlatIndex(Eigen::Array2i(x, y))]);
+      value = std::max(value, grid.GetValue(Eigen::Array2i(x, y) + known_min));
     }
   }
   if (unknown_probability > kMinProbability) {

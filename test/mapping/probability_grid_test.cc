@@ -77,6 +77,52 @@ TEST(ProbabilityGridTest, GrowKeepsContentsAtTheSameWorldPositions) {
   EXPECT_EQ(known, 3);
 }
 
+// The known bounds are kept up to date by writes rather than scanned for: after lookup-table
+// updates, direct writes, growth and cropping they equal a scan of every cell.
+TEST(ProbabilityGridTest, KnownBoundsFollowEveryWrite) {
+  const auto scanned = [](const ProbabilityGrid& grid, Eigen::Array2i* lo, Eigen::Array2i* hi) {
+    bool any = false;
+    for (int y = 0; y < grid.limits().num_y_cells; ++y) {
+      for (int x = 0; x < grid.limits().num_x_cells; ++x) {
+        const Eigen::Array2i c(x, y);
+        if (!grid.IsKnown(c)) continue;
+        *lo = any ? lo->min(c) : c;
+        *hi = any ? hi->max(c) : c;
+        any = true;
+      }
+    }
+    return any;
+  };
+  const auto expect_bounds_as_scanned = [&scanned](const ProbabilityGrid& grid, int step) {
+    Eigen::Array2i lo, hi, scan_lo, scan_hi;
+    const bool any = grid.ComputeKnownBounds(&lo, &hi);
+    ASSERT_EQ(any, scanned(grid, &scan_lo, &scan_hi)) << "step " << step;
+    if (!any) return;
+    EXPECT_EQ(lo.x(), scan_lo.x()) << "step " << step;
+    EXPECT_EQ(lo.y(), scan_lo.y()) << "step " << step;
+    EXPECT_EQ(hi.x(), scan_hi.x()) << "step " << step;
+    EXPECT_EQ(hi.y(), scan_hi.y()) << "step " << step;
+  };
+  ProbabilityGrid grid(SmallLimits());
+  const std::vector<uint16_t> table = ComputeLookupTableToApplyOdds(Odds(0.55f));
+  expect_bounds_as_scanned(grid, 0);
+  grid.ApplyLookupTable(Eigen::Array2i(7, 3), table);
+  grid.FinishUpdate();
+  expect_bounds_as_scanned(grid, 1);
+  grid.SetProbability(Eigen::Array2i(2, 15), 0.3f);
+  expect_bounds_as_scanned(grid, 2);
+  grid.GrowLimits(Eigen::Vector2f(-6.f, 9.f));
+  expect_bounds_as_scanned(grid, 3);
+  const Eigen::Array2i far = grid.limits().GetCellIndex(Eigen::Vector2f(-5.5f, 8.5f));
+  grid.ApplyLookupTable(far, table);
+  grid.FinishUpdate();
+  expect_bounds_as_scanned(grid, 4);
+  const ProbabilityGrid cropped = grid.Cropped();
+  expect_bounds_as_scanned(cropped, 5);
+  const ProbabilityGrid restored(cropped.limits(), cropped.cells());
+  expect_bounds_as_scanned(restored, 6);
+}
+
 TEST(ProbabilityGridTest, GrowIsANoOpForInteriorPoints) {
   ProbabilityGrid grid(SmallLimits());
   grid.GrowLimits(Eigen::Vector2f(0.f, 0.f));
@@ -118,18 +164,30 @@ TEST(ProbabilityGridTest, RefusesToGrowForAbsurdOrNonFinitePoints) {
   // All or nothing for a box with one good and one absurd corner.
   EXPECT_FALSE(grid.GrowLimits(Eigen::Vector2f(5.f, 5.f), Eigen::Vector2f(1e30f, 5.f)));
   EXPECT_EQ(grid.limits().num_x_cells, before.num_x_cells);
-  // The bound in cells, asked without allocating: with 10 m cells, 100 km needs 20 x 2^10 =
-  // 20,480 cells per side (4.2e8 cells), past it; 50 km needs 10,240 (1.05e8), within it.
+  // The bound in cells, asked without allocating. Only the axes that fall short grow, towards
+  // the side that does: with 10 m cells from x, y = -100 m, 200 km on both axes needs
+  // 20 x 2^10 = 20,480 cells per side (4.2e8 cells), past it; 50 km needs 5,120 per side.
   MapLimits coarse = SmallLimits();
   coarse.resolution_m = 10.0;
   coarse.origin_m = Eigen::Vector2d(-100.0, -100.0);
-  EXPECT_FALSE(ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(1e5f, 0.f), Eigen::Vector2f(1e5f, 0.f)));
+  EXPECT_FALSE(ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(2e5f, 2e5f),
+                                               Eigen::Vector2f(2e5f, 2e5f)));
   const auto limits = ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(0.f, -5e4f), Eigen::Vector2f(5e4f, 0.f));
   ASSERT_TRUE(limits.has_value());
-  EXPECT_EQ(limits->num_x_cells, 10240);
-  // Ordinary growth still works.
+  EXPECT_EQ(limits->num_x_cells, 5120);
+  EXPECT_EQ(limits->num_y_cells, 5120);
+  EXPECT_EQ(limits->origin_m.x(), -100.0);  // grown towards +x only
+  EXPECT_LT(limits->origin_m.y(), -5e4);    // grown towards -y only
+  EXPECT_EQ(limits->origin_m.y() + 10.0 * limits->num_y_cells, -100.0 + 10.0 * 20);
+  // A long strip grows along its length only.
+  const auto strip = ProbabilityGrid::LimitsCovering(coarse, Eigen::Vector2f(1e5f, 0.f),
+                                                     Eigen::Vector2f(1e5f, 0.f));
+  ASSERT_TRUE(strip.has_value());
+  EXPECT_EQ(strip->num_y_cells, 20);
+  // Ordinary growth still works: 0.1 m cells from x = -1 m reach 30 m at 320 cells.
   EXPECT_TRUE(grid.GrowLimits(Eigen::Vector2f(30.f, -30.f)));
-  EXPECT_EQ(grid.limits().num_x_cells, 640);
+  EXPECT_EQ(grid.limits().num_x_cells, 320);
+  EXPECT_EQ(grid.limits().num_y_cells, 320);
 }
 
 }  // namespace

@@ -30,6 +30,8 @@ class ProbabilityGrid {
   const MapLimits& limits() const { return limits_; }
   // Raw cell values, row-major as MapLimits::FlatIndex (kUnknownValue for unknown cells).
   const std::vector<uint16_t>& cells() const { return cells_; }
+  // Memory held by the cells.
+  size_t bytes() const { return cells_.capacity() * sizeof(uint16_t); }
 
   // kMinProbability for unknown cells and for cells outside the grid.
   float GetProbability(const Eigen::Array2i& cell) const;
@@ -57,7 +59,8 @@ class ProbabilityGrid {
   static std::optional<MapLimits> LimitsCovering(const MapLimits& limits, const Eigen::Vector2f& min_m,
                                                  const Eigen::Vector2f& max_m);
 
-  // Bounding box (in cells) of the known cells; false if nothing is known.
+  // Bounding box (in cells) of the known cells; false if nothing is known. Kept up to date by
+  // every write, so this is O(1): local SLAM crops its growing submap for a wide search.
   bool ComputeKnownBounds(Eigen::Array2i* min_cell, Eigen::Array2i* max_cell) const;
 
   // The smallest grid holding every known cell, at the same world positions. Growth by
@@ -65,9 +68,24 @@ class ProbabilityGrid {
   ProbabilityGrid Cropped() const;
 
  private:
+  // Widens the known bounds to `cell`, which has just become known.
+  void ExtendKnownBounds(const Eigen::Array2i& cell) {
+    if (!any_known_) {
+      known_min_ = known_max_ = cell;
+      any_known_ = true;
+      return;
+    }
+    known_min_ = known_min_.min(cell);
+    known_max_ = known_max_.max(cell);
+  }
+
   MapLimits limits_;
   std::vector<uint16_t> cells_;
   std::vector<int> update_indices_;
+  // Bounding box of the cells that are not kUnknownValue (valid while any_known_).
+  bool any_known_ = false;
+  Eigen::Array2i known_min_ = Eigen::Array2i::Zero();
+  Eigen::Array2i known_max_ = Eigen::Array2i::Zero();
 };
 
 }  // namespace mapping
