@@ -67,9 +67,10 @@ GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m) {
   image.height = std::max(image.height, 1);
 
   const size_t num_pixels = static_cast<size_t>(image.width) * image.height;
-  // Best confidence |p - 0.5| so far; negative means no grid knows the pixel yet.
-  std::vector<float> confidence(num_pixels, -1.f);
-  std::vector<float> probability(num_pixels, 0.f);
+  // The most confident (|p - 0.5|) cell value so far, kUnknownValue while no grid knows the
+  // pixel. Raw 2-byte values rather than floats: a campus-sized map has tens of millions of
+  // pixels.
+  std::vector<uint16_t> best(num_pixels, kUnknownValue);
   for (size_t g = 0; g < grids.size(); ++g) {
     if (boxes[g].empty()) continue;
     const ProbabilityGrid& grid = *grids[g].second;
@@ -89,13 +90,13 @@ GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m) {
             corner + resolution_m * Eigen::Vector2d(col + 0.5, y_index + 0.5);
         const Eigen::Array2i cell =
             grid.limits().GetCellIndex((T_grid_map * centre_in_map).cast<float>());
-        if (!grid.IsKnown(cell)) continue;
-        const float p = grid.GetProbability(cell);
+        const uint16_t value = grid.GetValue(cell);
+        if (value == kUnknownValue) continue;
         const size_t index = static_cast<size_t>(row) * image.width + col;
-        const float c = std::abs(p - 0.5f);
-        if (c > confidence[index]) {
-          confidence[index] = c;
-          probability[index] = p;
+        if (best[index] == kUnknownValue ||
+            std::abs(ValueToProbability(value) - 0.5f) >
+                std::abs(ValueToProbability(best[index]) - 0.5f)) {
+          best[index] = value;
         }
       }
     }
@@ -103,7 +104,8 @@ GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m) {
 
   image.pixels.resize(num_pixels);
   for (size_t i = 0; i < num_pixels; ++i) {
-    image.pixels[i] = confidence[i] < 0.f ? kUnknownPixel : ProbabilityToPixel(probability[i]);
+    image.pixels[i] =
+        best[i] == kUnknownValue ? kUnknownPixel : ProbabilityToPixel(ValueToProbability(best[i]));
   }
   return image;
 }
