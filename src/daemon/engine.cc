@@ -399,6 +399,7 @@ HealthReport Engine::Health() const {
   report.trimmed_submaps = stats.trimmed_submaps;
   report.loop_closures = stats.loop_closures_found;
   report.optimizations = stats.optimizations;
+  report.pending_searches = stats.pending_searches;
   report.checkpoint_failures = checkpoint_failures_;
   report.time_resets = intake_.time_resets();
   if (session_->visual_stage() != nullptr) {

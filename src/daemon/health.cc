@@ -56,9 +56,10 @@ int64_t ResidentMemoryBytes() {
 
 std::string FormatHealth(const HealthReport& report) {
   char buffer[256];
-  std::snprintf(buffer, sizeof(buffer), "up=%.0fs nodes=%d submaps=%d constraints=%d loops=%d opt=%d",
+  std::snprintf(buffer, sizeof(buffer),
+                "up=%.0fs nodes=%d submaps=%d constraints=%d loops=%d opt=%d pending_searches=%d",
                 report.uptime_s, report.nodes, report.submaps, report.constraints,
-                report.loop_closures, report.optimizations);
+                report.loop_closures, report.optimizations, report.pending_searches);
   std::string line = buffer;
   int64_t skipped = 0;
   for (const auto& c : report.channels) {

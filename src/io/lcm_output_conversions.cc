@@ -167,6 +167,7 @@ std::vector<uint8_t> EncodeHealth(double stamp_s, const HealthReport& report) {
   msg.constraints = report.constraints;
   msg.loop_closures = report.loop_closures;
   msg.optimizations = report.optimizations;
+  msg.pending_searches = report.pending_searches;
   msg.checkpoint_failures = report.checkpoint_failures;
   msg.time_resets = report.time_resets;
   msg.visual_keyframes = report.visual.keyframes;
@@ -193,9 +194,9 @@ bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out
     if (!cursor.SkipString()) return WireCursor::Fail("bad health_t channel name", error);
   }
   // received, dropped, malformed (int64) and queue_depth (int32) per channel; then three
-  // latencies, rss_bytes, five graph counts, checkpoint_failures and time_resets, seven visual
+  // latencies, rss_bytes, six graph counts, checkpoint_failures and time_resets, seven visual
   // counts (int32) and visual_dropped_frames.
-  constexpr int kTailBytes = 3 * 8 + 8 + 5 * 4 + 4 + 8 + 7 * 4 + 8;
+  constexpr int kTailBytes = 3 * 8 + 8 + 6 * 4 + 4 + 8 + 7 * 4 + 8;
   if (!cursor.Skip((3 * 8 + 4) * static_cast<int64_t>(n)) || !cursor.Skip(kTailBytes)) {
     return WireCursor::Fail("truncated health_t", error);
   }
@@ -222,6 +223,7 @@ bool DecodeHealth(const void* data, int size, double* stamp_s, HealthReport* out
   report.constraints = msg.constraints;
   report.loop_closures = msg.loop_closures;
   report.optimizations = msg.optimizations;
+  report.pending_searches = msg.pending_searches;
   report.checkpoint_failures = msg.checkpoint_failures;
   report.time_resets = msg.time_resets;
   report.visual.keyframes = msg.visual_keyframes;

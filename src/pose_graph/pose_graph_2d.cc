@@ -30,6 +30,8 @@ void PoseGraphOptions2D::Check(common::OptionChecker* check) const {
   check->Require(local_slam_translation_weight >= 0, "local_slam_translation_weight",
                  "must be >= 0");
   check->Require(local_slam_rotation_weight >= 0, "local_slam_rotation_weight", "must be >= 0");
+  check->Require(matcher_memory_budget_mb > 0, "matcher_memory_budget_mb", "must be > 0");
+  check->Require(max_pending_searches >= 1, "max_pending_searches", "must be >= 1");
   check->Nested("constraint_builder", constraint_builder);
   check->Nested("optimization", optimization);
   check->Nested("overlapping_submaps_trimmer", overlapping_submaps_trimmer);
@@ -52,6 +54,8 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
   reader.Get("local_slam_translation_weight", &options.local_slam_translation_weight);
   reader.Get("local_slam_rotation_weight", &options.local_slam_rotation_weight);
   reader.Get("final_optimization_iterations", &options.final_optimization_iterations);
+  reader.Get("matcher_memory_budget_mb", &options.matcher_memory_budget_mb);
+  reader.Get("max_pending_searches", &options.max_pending_searches);
   if (reader.Has("overlapping_submaps_trimmer")) {
     options.overlapping_submaps_trimmer =
         ParseOverlappingSubmapsTrimmerOptions2D(reader.Child("overlapping_submaps_trimmer"));
@@ -126,7 +130,7 @@ int PoseGraph2D::AddNode(
     if (options_.optimize_every_n_nodes == 0) return node;
     // The new node against every finished submap near it.
     for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
-      if (submaps_[s].matcher) ScheduleSearchLocked(node, s);
+      if (submaps_[s].searchable) ScheduleSearchLocked(node, s);
     }
     if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes && !optimization_running_) {
       nodes_since_optimization_ = 0;
@@ -155,15 +159,37 @@ void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   }
   ++submap_data.sampler_pulses;
   if (!submap_data.sampler.Pulse()) return;
+  if (static_cast<int>(searches_in_flight_.size()) >= options_.max_pending_searches) {
+    ++stats_.searches_skipped;
+    return;
+  }
   QueueSearchLocked({node, submap, T_submap_node});
 }
 
 void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
   const std::uint64_t id = next_search_id_++;
   searches_in_flight_[id] = search;
+  stats_.max_pending_searches =
+      std::max(stats_.max_pending_searches, static_cast<int>(searches_in_flight_.size()));
+  SubmapData& data = submaps_[search.submap];
+  data.last_used = ++use_clock_;
+  if (data.matcher) {
+    pending_tasks_.push_back(SearchTaskLocked(id, search));
+    return;
+  }
+  // Released to stay within the memory budget (or not built yet): the search waits for it.
+  data.waiting.emplace_back(id, search);
+  if (!data.rebuilding) {
+    data.rebuilding = true;
+    pending_tasks_.push_back(MakeMatcherTask(search.submap, data.submap, false, {}));
+  }
+}
+
+std::function<void()> PoseGraph2D::SearchTaskLocked(std::uint64_t id,
+                                                    const PendingSearch2D& search) {
   auto matcher = submaps_[search.submap].matcher;
   auto cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
-  pending_tasks_.push_back([this, matcher, cloud, search, id] {
+  return [this, matcher, cloud, search, id] {
     const auto start = std::chrono::steady_clock::now();
     double score = 0.0;
     std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
@@ -177,7 +203,31 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
     constraint->node = search.node;
     constraint->laser_score = score;
     AddLoopClosureLocked(*constraint);
-  });
+  };
+}
+
+void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher) {
+  SubmapData& data = submaps_[s];
+  if (data.matcher) matcher_bytes_ -= data.matcher->bytes();
+  data.matcher = std::move(matcher);
+  matcher_bytes_ += data.matcher->bytes();
+  data.last_used = ++use_clock_;
+  ++stats_.matcher_builds;
+  const size_t budget = static_cast<size_t>(options_.matcher_memory_budget_mb * 1024.0 * 1024.0);
+  while (matcher_bytes_ > budget) {
+    int oldest = -1;
+    for (size_t i = 0; i < submaps_.size(); ++i) {
+      if (static_cast<int>(i) == s || !submaps_[i].matcher) continue;
+      if (oldest < 0 || submaps_[i].last_used < submaps_[oldest].last_used) {
+        oldest = static_cast<int>(i);
+      }
+    }
+    if (oldest < 0) break;  // the new one alone exceeds the budget; it stays
+    // Searches already handed to the executor hold their own reference until they finish.
+    matcher_bytes_ -= submaps_[oldest].matcher->bytes();
+    submaps_[oldest].matcher.reset();
+    ++stats_.matcher_evictions;
+  }
 }
 
 void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
@@ -218,8 +268,17 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stats_.precomputation_s += SecondsSince(start);
-      if (submaps_[s].trimmed) return;
-      submaps_[s].matcher = matcher;
+      SubmapData& data = submaps_[s];
+      data.rebuilding = false;
+      if (data.trimmed) return;
+      InstallMatcherLocked(s, matcher);
+      data.searchable = true;
+      for (const auto& [id, search] : data.waiting) {
+        if (searches_in_flight_.count(id) != 0) {
+          pending_tasks_.push_back(SearchTaskLocked(id, search));
+        }
+      }
+      data.waiting.clear();
       for (const auto& search : searches) QueueSearchLocked(search);
       if (search_all_nodes) {
         for (size_t n = 0; n < nodes_.size(); ++n) ScheduleSearchLocked(nodes_[n].index, s);
@@ -361,7 +420,10 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
     if (data.trimmed || std::find(in_use.begin(), in_use.end(), s) != in_use.end()) continue;
     submap_index_.erase(data.submap.get());
     data.submap.reset();
+    if (data.matcher) matcher_bytes_ -= data.matcher->bytes();
     data.matcher.reset();
+    data.searchable = false;
+    data.waiting.clear();
     data.trimmed = true;
     ++stats_.trimmed_submaps;
     any = true;
@@ -509,6 +571,16 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
       std::count_if(constraints_.begin(), constraints_.end(), [](const Constraint2D& c) {
         return c.tag == Constraint2D::kLoopClosureCandidate;
       }));
+  stats.pending_searches = static_cast<int>(searches_in_flight_.size());
+  stats.matcher_bytes = matcher_bytes_;
+  for (const SubmapData& data : submaps_) {
+    if (data.submap) stats.submap_bytes += data.submap->grid().bytes();
+    if (data.matcher) ++stats.matchers;
+  }
+  for (const NodeData& node : nodes_) {
+    stats.node_bytes += sizeof(NodeData) + node.cloud.capacity() * sizeof(Eigen::Vector2f) +
+                        node.inserted_into.capacity() * sizeof(int);
+  }
   return stats;
 }
 

@@ -21,7 +21,7 @@ PoseGraphState2D PoseGraph2D::ExportState(
   for (const auto& submap : submaps_) {
     submaps->push_back(submap.submap);
     state.submaps.push_back(
-        {submap.finished, submap.trimmed, submap.matcher != nullptr, submap.sampler_pulses});
+        {submap.finished, submap.trimmed, submap.searchable, submap.sampler_pulses});
   }
   state.T_map_nodes = T_map_nodes_;
   state.T_map_submaps = T_map_submaps_;
@@ -80,10 +80,15 @@ void PoseGraph2D::RestoreState(
     }
     for (size_t s = 0; s < submaps_.size(); ++s) {
       if (!submaps_[s].finished || submaps_[s].trimmed) continue;
+      const std::vector<PendingSearch2D>& searches = searches_by_submap[static_cast<int>(s)];
+      if (state.submaps[s].matcher_ready && searches.empty()) {
+        // Its precomputation grids are built when a search first needs them.
+        submaps_[s].searchable = true;
+        continue;
+      }
       // A submap whose precomputation had not finished still owes the search of all nodes.
       tasks.push_back(MakeMatcherTask(static_cast<int>(s), submaps_[s].submap,
-                                      !state.submaps[s].matcher_ready,
-                                      searches_by_submap[static_cast<int>(s)]));
+                                      !state.submaps[s].matcher_ready, searches));
     }
     if (state.optimization_pending) {
       optimization_running_ = true;

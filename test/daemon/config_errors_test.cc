@@ -71,6 +71,8 @@ const BadValue kBadValues[] = {
     {"mapping::ProbabilityGridRangeDataInserterOptions",
      "local_slam.submaps.range_data_inserter.miss_probability", "0.7"},
     {"pose_graph::PoseGraphOptions2D", "global_slam.final_optimization_iterations", "0"},
+    {"pose_graph::PoseGraphOptions2D", "global_slam.matcher_memory_budget_mb", "0"},
+    {"pose_graph::PoseGraphOptions2D", "global_slam.max_pending_searches", "0"},
     {"pose_graph::ConstraintBuilderOptions2D", "global_slam.constraint_builder.sampling_ratio",
      "1.5"},
     {"mapping::FastCorrelativeScanMatcherOptions2D",

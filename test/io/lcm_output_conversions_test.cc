@@ -280,6 +280,7 @@ HealthReport TwoChannelReport() {
   report.latency.median_ms = 2.0;
   report.rss_bytes = 1 << 20;
   report.nodes = 40;
+  report.pending_searches = 17;
   report.time_resets = 1;
   report.visual.forced = 4;
   report.visual.dropped_frames = 9;
@@ -303,6 +304,7 @@ TEST(LcmOutputConversionsTest, HealthRoundTrip) {
   EXPECT_EQ(out.latency.median_ms, 2.0);
   EXPECT_EQ(out.rss_bytes, 1 << 20);
   EXPECT_EQ(out.nodes, 40);
+  EXPECT_EQ(out.pending_searches, 17);
   EXPECT_EQ(out.time_resets, 1);
   EXPECT_EQ(out.visual.forced, 4);
   EXPECT_EQ(out.visual.dropped_frames, 9);

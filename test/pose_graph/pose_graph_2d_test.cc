@@ -156,6 +156,61 @@ TEST(PoseGraph2DTest, ThreadPoolRunFindsLoopClosures) {
   EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
 }
 
+TEST(PoseGraph2DTest, MatcherMemoryBudgetChangesWhenSearchesRunNotWhatTheyFind) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::InlineExecutor executor;
+  const RunResult unbounded = RunGraph(num_nodes, TestOptions(10), &executor);
+  PoseGraphOptions2D tight = TestOptions(10);
+  // Smaller than one submap's grids: only the one just built or rebuilt is held.
+  tight.matcher_memory_budget_mb = 1e-3;
+  const RunResult bounded = RunGraph(num_nodes, tight, &executor);
+  EXPECT_EQ(unbounded.stats.matcher_evictions, 0);
+  EXPECT_EQ(unbounded.stats.matcher_builds, unbounded.stats.finished_submaps);
+  EXPECT_GT(bounded.stats.matcher_evictions, 0);
+  EXPECT_GT(bounded.stats.matcher_builds, bounded.stats.finished_submaps);
+  EXPECT_EQ(bounded.stats.matchers, 1);
+  EXPECT_LT(bounded.stats.matcher_bytes, unbounded.stats.matcher_bytes);
+  EXPECT_EQ(bounded.stats.pending_searches, 0);
+  EXPECT_EQ(bounded.stats.loop_closure_searches, unbounded.stats.loop_closure_searches);
+  EXPECT_EQ(bounded.stats.loop_closures_found, unbounded.stats.loop_closures_found);
+  ASSERT_EQ(bounded.T_map_nodes.size(), unbounded.T_map_nodes.size());
+  for (size_t i = 0; i < bounded.T_map_nodes.size(); ++i) {
+    EXPECT_EQ(bounded.T_map_nodes[i].translation(), unbounded.T_map_nodes[i].translation())
+        << "node " << i;
+    EXPECT_EQ(bounded.T_map_nodes[i].angle_rad(), unbounded.T_map_nodes[i].angle_rad())
+        << "node " << i;
+  }
+}
+
+TEST(PoseGraph2DTest, ThreadPoolRunWithinATinyMatcherBudgetClosesTheLoop) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::ThreadPool pool(2);
+  PoseGraphOptions2D tight = TestOptions(10);
+  tight.matcher_memory_budget_mb = 1e-3;
+  const RunResult run = RunGraph(num_nodes, tight, &pool);
+  EXPECT_GT(run.stats.matcher_evictions, 0);
+  EXPECT_EQ(run.stats.pending_searches, 0);  // RunFinalOptimization waited for all of them
+  EXPECT_GT(run.stats.max_pending_searches, 0);
+  EXPECT_GT(run.stats.loop_closures_found, 0);
+  EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
+}
+
+TEST(PoseGraph2DTest, SearchesBeyondTheQueueCapAreSkippedAndCounted) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::InlineExecutor executor;
+  const RunResult unbounded = RunGraph(num_nodes, TestOptions(10), &executor);
+  PoseGraphOptions2D capped = TestOptions(10);
+  capped.max_pending_searches = 1;
+  const RunResult run = RunGraph(num_nodes, capped, &executor);
+  // The inline executor runs a node's searches after AddNode queued them all, so without the
+  // cap several are pending at once.
+  EXPECT_GT(unbounded.stats.max_pending_searches, 1);
+  EXPECT_EQ(unbounded.stats.searches_skipped, 0);
+  EXPECT_EQ(run.stats.max_pending_searches, 1);
+  EXPECT_GT(run.stats.searches_skipped, 0);
+  EXPECT_LT(run.stats.loop_closure_searches, unbounded.stats.loop_closure_searches);
+}
+
 TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
   const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
   common::InlineExecutor executor;

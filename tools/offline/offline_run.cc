@@ -268,9 +268,30 @@ int Run(const Args& args) {
       global.optimizations, global.loop_closure_search_s, global.precomputation_s,
       global.optimization_s, global.trimmed_submaps, global.trimmed_nodes,
       global.loop_closure_candidates);
+  const auto per = [](size_t bytes, int count) {
+    return count > 0 ? static_cast<double>(bytes) / count / 1024.0 : 0.0;
+  };
+  std::printf(
+      "global_slam_memory: max_pending_searches=%d searches_skipped=%d submap_grids_mb=%.1f matchers=%d "
+      "matcher_grids_mb=%.1f matcher_builds=%d matcher_evictions=%d node_clouds_mb=%.1f "
+      "kb_per_submap=%.1f kb_per_matcher=%.1f kb_per_node=%.2f\n",
+      global.max_pending_searches, global.searches_skipped, global.submap_bytes / 1048576.0, global.matchers,
+      global.matcher_bytes / 1048576.0, global.matcher_builds, global.matcher_evictions,
+      global.node_bytes / 1048576.0,
+      per(global.submap_bytes, global.submaps - global.trimmed_submaps),
+      per(global.matcher_bytes, global.matchers), per(global.node_bytes, global.nodes));
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
+  // Whether the cost of a scan grows with the map: the first and the last 1,000 scans (the
+  // same scans twice on a shorter log).
+  const size_t window = std::min<size_t>(1000, scan_cost_ms.size());
+  const std::vector<double> first(scan_cost_ms.begin(), scan_cost_ms.begin() + window);
+  const std::vector<double> last(scan_cost_ms.end() - window, scan_cost_ms.end());
+  std::printf("per_scan_ms_first_%zu: median=%.2f p99=%.2f\n", window, Percentile(first, 0.5),
+              Percentile(first, 0.99));
+  std::printf("per_scan_ms_last_%zu: median=%.2f p99=%.2f\n", window, Percentile(last, 0.5),
+              Percentile(last, 0.99));
   std::printf("wrote %strajectory.tum %snodes.tum %smap.pgm %smap.yaml %smap.png\n", out.c_str(),
               out.c_str(), out.c_str(), out.c_str(), out.c_str());
   if (written.wrote_cloud) {

@@ -41,6 +41,7 @@ struct HealthReport {
   int trimmed_submaps = 0;
   int loop_closures = 0;
   int optimizations = 0;
+  int pending_searches = 0;  // loop-closure searches queued, not yet finished
   // Checkpoints or trajectory-archive appends that could not be written, and time resets of
   // the input (see Intake).
   int checkpoint_failures = 0;

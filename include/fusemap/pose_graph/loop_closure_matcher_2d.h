@@ -54,6 +54,8 @@ class LoopClosureMatcher2D {
   // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score; `score` receives the best score found.
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
                                     const sensor::PointCloud2d& cloud, double* score) const;
+  // Memory held by the precomputation grids (the submap is counted by its owner).
+  size_t bytes() const { return fast_matcher_.precomputation_grids().bytes(); }
 
  private:
   std::shared_ptr<const mapping::Submap2D> submap_;

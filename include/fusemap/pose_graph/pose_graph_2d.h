@@ -34,6 +34,15 @@ struct PoseGraphOptions2D {
   double local_slam_translation_weight = 1e5;
   double local_slam_rotation_weight = 1e5;
   int final_optimization_iterations = 200;
+  // Memory for loop-closure precomputation grids (LoopClosureMatcher2D) held at once. Beyond
+  // it, the grids of the submaps least recently searched are released and rebuilt when a
+  // search needs them again: a campus has tens of submaps of several MB each, and a search
+  // reaches only the few within max_constraint_distance_m.
+  double matcher_memory_budget_mb = 128.0;
+  // Loop-closure searches queued at once. A search that would queue beyond it is skipped (and
+  // counted): a daemon whose searches cannot keep up with the data drops some, rather than
+  // fall further behind without bound. Far above what the shared logs queue (see README).
+  int max_pending_searches = 2000;
   OverlappingSubmapsTrimmerOptions2D overlapping_submaps_trimmer;  // off by default
   LoopClosureVerificationOptions2D loop_closure_verification;      // off by default
 
@@ -46,7 +55,8 @@ struct PoseGraphOptions2D {
 
 // Keys: optimize_every_n_nodes, constraint_builder, optimization, matcher_translation_weight,
 // matcher_rotation_weight, local_slam_translation_weight, local_slam_rotation_weight,
-// final_optimization_iterations, overlapping_submaps_trimmer, loop_closure_verification.
+// final_optimization_iterations, matcher_memory_budget_mb, max_pending_searches,
+// overlapping_submaps_trimmer, loop_closure_verification.
 PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader);
 
 // A loop-closure search queued but not yet finished: node against submap, from the estimate.
@@ -94,7 +104,10 @@ struct ArchivedNode2D {
 // an optimisation: they keep their index and last pose, but their data is released and they
 // take no further part. Trimmed nodes can then be taken out of memory altogether
 // (RemoveTrimmedNodes), so that a graph that keeps trimming holds what the map needs, not what the
-// run has seen; node indices stay those given by AddNode. All public methods are thread-safe.
+// run has seen; node indices stay those given by AddNode. The precomputation grids held at
+// once stay within matcher_memory_budget_mb: released grids are rebuilt (on the executor) when
+// a search needs them, which changes when searches run, never what they find. All public
+// methods are thread-safe.
 class PoseGraph2D {
  public:
   struct Stats {
@@ -111,6 +124,22 @@ class PoseGraph2D {
     // Matches waiting for loop-closure verification now (not checkpointed; included in
     // constraints, not in loop_closures_found).
     int loop_closure_candidates = 0;
+    // Loop-closure searches queued and not yet finished: now, and the most at any time since
+    // the graph was made (not checkpointed).
+    int pending_searches = 0;
+    int max_pending_searches = 0;
+    // Searches skipped because max_pending_searches were queued (not checkpointed).
+    int searches_skipped = 0;
+    // Memory held now (not checkpointed): grids of the submaps held, precomputation grids of
+    // the submaps prepared for loop closure, and node point clouds.
+    size_t submap_bytes = 0;
+    size_t matcher_bytes = 0;
+    size_t node_bytes = 0;
+    int matchers = 0;  // submaps whose precomputation grids are held
+    // Precomputations run (first builds and rebuilds), and grids released to stay within
+    // matcher_memory_budget_mb (not checkpointed).
+    int matcher_builds = 0;
+    int matcher_evictions = 0;
     double loop_closure_search_s = 0.0;
     double precomputation_s = 0.0;
     double optimization_s = 0.0;
@@ -191,9 +220,9 @@ class PoseGraph2D {
   PoseGraphState2D ExportState(
       std::vector<std::shared_ptr<const mapping::Submap2D>>* submaps) const;
   // Only on a graph without nodes. `submaps` are the restored submaps by index (null where
-  // trimmed). Finished
-  // submaps get their precomputation grids rebuilt on the executor; until that finishes, new
-  // nodes are not searched against them.
+  // trimmed). Finished submaps whose precomputation had not finished, or with searches
+  // pending, get their grids rebuilt on the executor (until then new nodes are not searched
+  // against them); the others rebuild theirs when a search first needs them.
   void RestoreState(const PoseGraphState2D& state,
                     const std::vector<std::shared_ptr<const mapping::Submap2D>>& submaps);
 
@@ -208,8 +237,16 @@ class PoseGraph2D {
   };
   struct SubmapData {
     std::shared_ptr<const mapping::Submap2D> submap;
-    std::shared_ptr<const LoopClosureMatcher2D> matcher;  // once finished and precomputed
+    // Held while precomputed and within the memory budget (matcher_memory_budget_mb).
+    std::shared_ptr<const LoopClosureMatcher2D> matcher;
     bool finished = false;
+    // Precomputed once and the search of every node near it queued: searched from then on,
+    // rebuilding `matcher` when it was released.
+    bool searchable = false;
+    bool rebuilding = false;  // a precomputation task is queued or running
+    std::uint64_t last_used = 0;  // use_clock_ at the last search queued against it
+    // Searches (by id in searches_in_flight_) waiting for `matcher` to be rebuilt.
+    std::vector<std::pair<std::uint64_t, PendingSearch2D>> waiting;
     bool trimmed = false;  // submap and matcher released
     FixedRatioSampler sampler{0.0};
     long sampler_pulses = 0;  // lets a restored sampler be replayed to the same state
@@ -220,6 +257,11 @@ class PoseGraph2D {
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
   void QueueSearchLocked(const PendingSearch2D& search);
+  // The task that runs search `id` with the submap's matcher, which must be held.
+  std::function<void()> SearchTaskLocked(std::uint64_t id, const PendingSearch2D& search);
+  // Installs a just built matcher for submap `s`, then releases the least recently used
+  // others while the grids held exceed the budget.
+  void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
   // Adds a found match: at once, or with verification on as a candidate that is accepted
   // (together with the candidates it confirms) once enough closures agree with it.
   void AddLoopClosureLocked(const Constraint2D& constraint);
@@ -268,6 +310,8 @@ class PoseGraph2D {
   // Searches handed to the executor and not yet finished, by a running id.
   std::map<std::uint64_t, PendingSearch2D> searches_in_flight_;  // guarded by mutex_
   std::uint64_t next_search_id_ = 0;                             // guarded by mutex_
+  std::uint64_t use_clock_ = 0;                                  // guarded by mutex_
+  size_t matcher_bytes_ = 0;  // guarded by mutex_, of the matchers held
   // The loop-constraint API (pose_graph_2d_loops.cc).
   int next_loop_id_ = 0;                  // guarded by mutex_
   bool report_loop_closures_ = false;     // guarded by mutex_
