@@ -44,6 +44,9 @@ awk -v c="$((c1 - c0))" -v hz="$(getconf CLK_TCK)" -v t0="$t0" -v t1="$t1" \
            100 * c / hz / (t1 - t0), c / hz, t1 - t0 }'
 grep '^fusemapd: t=' "$WORK/rt.err" | tail -1 |
   sed 's/.*\(nodes=[0-9]*\).*\(LIDAR=[^ ]*\).*\(latency_p50=[^ ]*\) \(p99=[^ ]*\) \(rss=[^ ]*\).*/\1 \2 (rx\/drop\/bad\/queue) \3 \4 \5/'
+# Global SLAM's backlog: loop-closure searches queued, at most over the health lines (1 Hz).
+grep '^fusemapd: t=' "$WORK/rt.err" | grep -o 'pending_searches=[0-9]*' | cut -d= -f2 |
+  sort -n | tail -1 | sed 's/^/pending_searches max over health lines: /'
 
 echo "== 2. looped lap to ${LONG_S} s of simulated time, file:// at full speed"
 "$SIM" --world "$SRC/data/worlds/hall.yaml" --seconds 62.5 --no-rgbd --seed 2 \
@@ -62,13 +65,16 @@ grep '^fusemapd: t=' "$WORK/long.err" | awk -v every=300 '
   { split($2, a, "="); t = a[2]; if (t0 == "") t0 = t
     for (i = 3; i <= NF; ++i) { split($i, kv, "="); v[kv[1]] = kv[2] }
     m = int((t - t0) / every)
-    if (m > last) { last = m; printf "sim %5.0f min: rss %s nodes %s submaps %s time_resets %s\n",
-                    (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"] }
+    if (v["pending_searches"] + 0 > max_pending) max_pending = v["pending_searches"] + 0
+    if (m > last) { last = m; printf "sim %5.0f min: rss %s nodes %s submaps %s time_resets %s pending_searches %s\n",
+                    (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"],
+                    v["pending_searches"] }
     # Least-squares slope of RSS over simulated time once the hall is mapped (after 15 min).
     if (t - t0 >= 900) { h = (t - t0) / 3600; r = v["rss"] + 0; n++; sx += h; sy += r
                          sxx += h * h; sxy += h * r } }
   END { printf "sim %5.0f min (end): rss %s nodes %s submaps %s time_resets %s\n",
         (t - t0) / 60, v["rss"], v["nodes"], v["submaps"], v["time_resets"]
+        printf "pending_searches max over health lines: %d\n", max_pending
         if (n > 2 && n * sxx - sx * sx > 0)
           printf "rss trend from 15 min on: %+.1f MB per hour of operation (%d health samples)\n",
                  (n * sxy - sx * sy) / (n * sxx - sx * sx), n }'

@@ -88,10 +88,13 @@ shopt -u nullglob
 [ ${#LOGS[@]} -gt 0 ] || { echo "bench_logs: no *.gfs.log[.gz] in $DIR" >&2; exit 1; }
 
 COLUMNS=(log profile scans odometry skipped gmapping_dropped closures_searched
-  closures_accepted scan_ms_median scan_ms_p99 wall_s realtime_factor peak_rss_mb
+  closures_accepted max_pending scan_ms_median scan_ms_p99 scan_ms_p99_first scan_ms_p99_last
+  wall_s realtime_factor cpu_s cpu_realtime_factor peak_rss_mb
   slam_rmse_m slam_max_m odom_rmse_m odom_max_m relations_trans_m relations_rot_deg status)
 HEADERS=("log" "profile" "scans" "odometry" "skipped" "GMapping poses dropped"
-  "closures searched" "accepted" "ms/scan median" "p99" "wall s" "× real time" "peak RSS MB"
+  "closures searched" "accepted" "max pending searches" "ms/scan median" "p99"
+  "p99 first 1000" "p99 last 1000" "wall s" "× real time" "CPU s" "× real time per CPU s"
+  "peak RSS MB"
   "SLAM RMSE m" "SLAM max m" "odometry RMSE m" "odometry max m" "relations m" "relations °"
   "status")
 ROWS=()
@@ -151,7 +154,15 @@ for log in "${LOGS[@]}"; do
       row[peak_rss_mb]=$(kv "$o" peak_rss_mb)
       row[wall_s]=$(kv "$o" wall_s 1)
       row[realtime_factor]=$(kv "$o" realtime_factor)
-      [ $synthesized = 1 ] && row[realtime_factor]="n/a (time synthesized)"
+      row[max_pending]=$(kv "$o" max_pending_searches)
+      row[scan_ms_p99_first]=$(kv "$o" first_p99)
+      row[scan_ms_p99_last]=$(kv "$o" last_p99)
+      row[cpu_s]=$(kv "$o" cpu_s 1)
+      row[cpu_realtime_factor]=$(kv "$o" cpu_realtime_factor)
+      if [ $synthesized = 1 ]; then
+        row[realtime_factor]="n/a (time synthesized)"
+        row[cpu_realtime_factor]="n/a"
+      fi
       if [ $score_relations = 1 ]; then
         row[relations_trans_m]=$(kv "$o" trans_mean_m)
         row[relations_rot_deg]=$(kv "$o" rot_mean_deg)

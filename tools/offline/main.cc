@@ -37,7 +37,8 @@ constexpr char kUsage[] =
     "                      falls back to the raw odometry when the fit is not determined\n"
     "  --help              this text\n"
     "\n"
-    "The last line printed is `scans=N wall_s=W realtime_factor=R`.\n"
+    "The last line printed is `scans=N wall_s=W realtime_factor=R cpu_s=C cpu_realtime_factor=F`\n"
+    "(R: log seconds per wall second; F: log seconds per CPU second, all threads).\n"
     "Exit codes: 0 outputs written, 1 bad input (unreadable log or relations, no usable scans)\n"
     "or outputs not written, 2 command-line usage or configuration error.\n";
 

@@ -288,9 +288,9 @@ int Run(const Args& args) {
   const size_t window = std::min<size_t>(1000, scan_cost_ms.size());
   const std::vector<double> first(scan_cost_ms.begin(), scan_cost_ms.begin() + window);
   const std::vector<double> last(scan_cost_ms.end() - window, scan_cost_ms.end());
-  std::printf("per_scan_ms_first_%zu: median=%.2f p99=%.2f\n", window, Percentile(first, 0.5),
-              Percentile(first, 0.99));
-  std::printf("per_scan_ms_last_%zu: median=%.2f p99=%.2f\n", window, Percentile(last, 0.5),
+  std::printf("per_scan_ms_first_last: scans=%zu first_median=%.2f first_p99=%.2f "
+              "last_median=%.2f last_p99=%.2f\n",
+              window, Percentile(first, 0.5), Percentile(first, 0.99), Percentile(last, 0.5),
               Percentile(last, 0.99));
   std::printf("wrote %strajectory.tum %snodes.tum %smap.pgm %smap.yaml %smap.png\n", out.c_str(),
               out.c_str(), out.c_str(), out.c_str(), out.c_str());
@@ -333,8 +333,14 @@ int Run(const Args& args) {
                 r.rot_deg.std);
   }
   const double duration_s = last_stamp_s - first_stamp_s;
-  std::printf("scans=%d wall_s=%.3f realtime_factor=%.1f\n", scans, wall_s,
-              wall_s > 0 ? duration_s / wall_s : 0.0);
+  // CPU of every thread (loop-closure search runs beside the scan loop), to the end of the run.
+  struct rusage end_usage;
+  getrusage(RUSAGE_SELF, &end_usage);
+  const double cpu_s = end_usage.ru_utime.tv_sec + 1e-6 * end_usage.ru_utime.tv_usec +
+                       end_usage.ru_stime.tv_sec + 1e-6 * end_usage.ru_stime.tv_usec;
+  std::printf("scans=%d wall_s=%.3f realtime_factor=%.1f cpu_s=%.2f cpu_realtime_factor=%.1f\n",
+              scans, wall_s, wall_s > 0 ? duration_s / wall_s : 0.0, cpu_s,
+              cpu_s > 0 ? duration_s / cpu_s : 0.0);
   return 0;
 }
 
