@@ -574,7 +574,11 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   stats.pending_searches = static_cast<int>(searches_in_flight_.size());
   stats.matcher_bytes = matcher_bytes_;
   for (const SubmapData& data : submaps_) {
-    if (data.submap) stats.submap_bytes += data.submap->grid().bytes();
+    // Only finished grids: local SLAM may be growing the others on its own thread.
+    if (data.submap && data.finished) {
+      stats.submap_bytes += data.submap->grid().bytes();
+      ++stats.finished_submaps_held;
+    }
     if (data.matcher) ++stats.matchers;
   }
   for (const NodeData& node : nodes_) {

@@ -278,7 +278,7 @@ int Run(const Args& args) {
       global.max_pending_searches, global.searches_skipped, global.submap_bytes / 1048576.0, global.matchers,
       global.matcher_bytes / 1048576.0, global.matcher_builds, global.matcher_evictions,
       global.node_bytes / 1048576.0,
-      per(global.submap_bytes, global.submaps - global.trimmed_submaps),
+      per(global.submap_bytes, global.finished_submaps_held),
       per(global.matcher_bytes, global.matchers), per(global.node_bytes, global.nodes));
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),

@@ -130,9 +130,11 @@ class PoseGraph2D {
     int max_pending_searches = 0;
     // Searches skipped because max_pending_searches were queued (not checkpointed).
     int searches_skipped = 0;
-    // Memory held now (not checkpointed): grids of the submaps held, precomputation grids of
-    // the submaps prepared for loop closure, and node point clouds.
+    // Memory held now (not checkpointed): grids of the finished submaps held (the active ones
+    // belong to local SLAM), precomputation grids of the submaps prepared for loop closure,
+    // and node point clouds.
     size_t submap_bytes = 0;
+    int finished_submaps_held = 0;
     size_t matcher_bytes = 0;
     size_t node_bytes = 0;
     int matchers = 0;  // submaps whose precomputation grids are held
