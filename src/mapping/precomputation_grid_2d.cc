@@ -111,12 +111,11 @@ PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
                            grid.limits().num_y_cells) {
   values_.resize(static_cast<size_t>(size_x_) * size_y_);
   const std::vector<uint16_t>& cells = grid.cells();
-  // Raw cells (kUnknownValue reads as kMinProbability, as GetProbability gives it), quantised
-  // through a table: the grid holds millions of cells and 32768 possible values.
+  // Raw cells quantised through a table (ValueToProbability reads kUnknownValue as
+  // kMinProbability, as GetProbability does): millions of cells, 32768 possible values.
   std::vector<uint8_t> table(kMaxValue + 1);
   for (int value = 0; value <= kMaxValue; ++value) {
-    table[value] = ProbabilityToPrecomputationValue(
-        value == kUnknownValue ? kMinProbability : ValueToProbability(static_cast<uint16_t>(value)));
+    table[value] = ProbabilityToPrecomputationValue(ValueToProbability(static_cast<uint16_t>(value)));
   }
   for (size_t i = 0; i < values_.size(); ++i) {
     values_[i] = table[cells[i] & static_cast<uint16_t>(~kUpdateMarker)];

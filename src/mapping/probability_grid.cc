@@ -80,18 +80,9 @@ std::optional<MapLimits> ProbabilityGrid::LimitsCovering(const MapLimits& limits
                                                          const Eigen::Vector2f& min_m,
                                                          const Eigen::Vector2f& max_m) {
   if (!min_m.allFinite() || !max_m.allFinite()) return std::nullopt;
-  // In double cell units, so that no far point is ever cast to int.
-  const auto inside = [&](const MapLimits& l) {
-    const Eigen::Array2d lo = ((min_m.cast<double>() - l.origin_m) / l.resolution_m).array().floor();
-    const Eigen::Array2d hi = ((max_m.cast<double>() - l.origin_m) / l.resolution_m).array().floor();
-    return lo.x() >= kGrowMarginCells && lo.y() >= kGrowMarginCells &&
-           hi.x() < l.num_x_cells - kGrowMarginCells && hi.y() < l.num_y_cells - kGrowMarginCells;
-  };
   MapLimits grown = limits;
-  while (!inside(grown)) {
-    // Double only the axes that fall short, towards the side(s) that do: amortised O(1) per
-    // cell, and a robot driving along x does not pay for a grid that also doubles along y
-    // (outdoors, with 30 m rays, that was four times the area and most of local SLAM's time).
+  for (;;) {
+    // In double cell units, so that no far point is ever cast to int.
     const Eigen::Array2d lo =
         ((min_m.cast<double>() - grown.origin_m) / grown.resolution_m).array().floor();
     const Eigen::Array2d hi =
@@ -100,6 +91,10 @@ std::optional<MapLimits> ProbabilityGrid::LimitsCovering(const MapLimits& limits
     const bool high_x = hi.x() >= grown.num_x_cells - kGrowMarginCells;
     const bool low_y = lo.y() < kGrowMarginCells;
     const bool high_y = hi.y() >= grown.num_y_cells - kGrowMarginCells;
+    if (!low_x && !high_x && !low_y && !high_y) return grown;
+    // Double only the axes that fall short, towards the side(s) that do: amortised O(1) per
+    // cell, and a robot driving along x does not pay for a grid that also doubles along y
+    // (outdoors, with 30 m rays, that was four times the area and most of local SLAM's time).
     const int add_x = low_x || high_x ? std::max(grown.num_x_cells, 2 * kGrowMarginCells) : 0;
     const int add_y = low_y || high_y ? std::max(grown.num_y_cells, 2 * kGrowMarginCells) : 0;
     const int64_t cells = (int64_t{grown.num_x_cells} + add_x) * (int64_t{grown.num_y_cells} + add_y);
@@ -112,7 +107,6 @@ std::optional<MapLimits> ProbabilityGrid::LimitsCovering(const MapLimits& limits
     grown.num_x_cells += add_x;
     grown.num_y_cells += add_y;
   }
-  return grown;
 }
 
 bool ProbabilityGrid::GrowLimits(const Eigen::Vector2f& point_m) { return GrowLimits(point_m, point_m); }
