@@ -10,6 +10,7 @@
 #include <utility>
 #include <variant>
 
+#include "fusemap/common/process_memory.h"
 #include "fusemap/daemon/resume.h"
 #include "fusemap/io/visual_keyframes_file.h"
 
@@ -376,7 +377,7 @@ void Engine::RunPublisher() {
       next_health = now + health_period;
     }
     if (now >= next_release) {
-      ReleaseFreeMemory();
+      common::ReleaseFreeMemory();
       next_release = now + release_period;
     }
   }
@@ -390,7 +391,7 @@ HealthReport Engine::Health() const {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   report.channels = intake_.ChannelHealth();
   report.latency = latency_.Summarize();
-  report.rss_bytes = ResidentMemoryBytes();
+  report.rss_bytes = common::ResidentMemoryBytes();
   const auto stats = session_->builder().pose_graph().stats();
   report.nodes = stats.nodes - stats.trimmed_nodes;
   report.submaps = stats.submaps - stats.trimmed_submaps;

@@ -1,13 +1,7 @@
 #include "fusemap/daemon/health.h"
 
-#include <unistd.h>
-#ifdef __GLIBC__
-#include <malloc.h>
-#endif
-
 #include <algorithm>
 #include <cstdio>
-#include <fstream>
 
 namespace fusemap {
 namespace daemon {
@@ -39,19 +33,6 @@ double Percentile(std::vector<double> values, double q) {
       std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
   std::nth_element(values.begin(), values.begin() + i, values.end());
   return values[i];
-}
-
-void ReleaseFreeMemory() {
-#ifdef __GLIBC__
-  malloc_trim(0);
-#endif
-}
-
-int64_t ResidentMemoryBytes() {
-  std::ifstream statm("/proc/self/statm");
-  int64_t total_pages = 0, resident_pages = 0;
-  if (!(statm >> total_pages >> resident_pages)) return 0;
-  return resident_pages * static_cast<int64_t>(sysconf(_SC_PAGESIZE));
 }
 
 std::string FormatHealth(const HealthReport& report) {

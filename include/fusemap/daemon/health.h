@@ -40,12 +40,6 @@ class LatencyWindow {
 // Nearest-rank percentile (q in [0, 1]) of `values`; 0 when empty.
 double Percentile(std::vector<double> values, double q);
 
-// Resident set size of this process from /proc/self/statm, or 0 where that is unavailable.
-int64_t ResidentMemoryBytes();
-
-// Returns free heap pages to the system (glibc's malloc_trim; a no-op elsewhere).
-void ReleaseFreeMemory();
-
 // The report the publisher sends as fusemap_lcm::health_t (defined in io, which encodes it).
 using HealthReport = io::HealthReport;
 
