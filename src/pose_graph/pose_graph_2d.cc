@@ -228,6 +228,11 @@ void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureM
     submaps_[oldest].matcher.reset();
     ++stats_.matcher_evictions;
   }
+  if (matcher_bytes_ > stats_.max_matcher_bytes) {
+    stats_.max_matcher_bytes = matcher_bytes_;
+    stats_.max_matchers = static_cast<int>(std::count_if(
+        submaps_.begin(), submaps_.end(), [](const SubmapData& d) { return d.matcher != nullptr; }));
+  }
 }
 
 void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
@@ -489,6 +494,11 @@ void PoseGraph2D::RunFinalOptimization() {
     optimization_running_ = true;
   }
   RunOptimization(options_.final_optimization_iterations);
+  // The searches are over: the precomputation grids (up to matcher_memory_budget_mb) go back
+  // before the caller draws its map. Were more data to come, a search would rebuild its grid.
+  std::lock_guard<std::mutex> lock(mutex_);
+  for (SubmapData& data : submaps_) data.matcher.reset();
+  matcher_bytes_ = 0;
 }
 
 std::shared_ptr<const PoseGraphSnapshot> PoseGraph2D::Snapshot() const {

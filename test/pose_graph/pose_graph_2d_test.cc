@@ -153,6 +153,10 @@ RunResult ExpectThreadPoolRunClosesTheLoop(const PoseGraphOptions2D& options) {
   const RunResult run = RunGraph(num_nodes, options, &pool);
   EXPECT_EQ(run.stats.nodes, num_nodes);
   EXPECT_EQ(run.stats.pending_searches, 0);  // RunFinalOptimization waited for all of them
+  // ...and then released the precomputation grids.
+  EXPECT_EQ(run.stats.matchers, 0);
+  EXPECT_EQ(run.stats.matcher_bytes, 0u);
+  EXPECT_GT(run.stats.max_matcher_bytes, 0u);
   EXPECT_GT(run.stats.max_pending_searches, 0);
   EXPECT_GT(run.stats.loop_closures_found, 0);
   EXPECT_GT(run.stats.optimizations, 0);
@@ -176,8 +180,9 @@ TEST(PoseGraph2DTest, MatcherMemoryBudgetChangesWhenSearchesRunNotWhatTheyFind) 
   EXPECT_EQ(unbounded.stats.matcher_builds, unbounded.stats.finished_submaps);
   EXPECT_GT(bounded.stats.matcher_evictions, 0);
   EXPECT_GT(bounded.stats.matcher_builds, bounded.stats.finished_submaps);
-  EXPECT_EQ(bounded.stats.matchers, 1);
-  EXPECT_LT(bounded.stats.matcher_bytes, unbounded.stats.matcher_bytes);
+  EXPECT_EQ(bounded.stats.max_matchers, 1);
+  EXPECT_EQ(unbounded.stats.max_matchers, unbounded.stats.finished_submaps);
+  EXPECT_LT(bounded.stats.max_matcher_bytes, unbounded.stats.max_matcher_bytes);
   EXPECT_EQ(bounded.stats.pending_searches, 0);
   EXPECT_EQ(bounded.stats.loop_closure_searches, unbounded.stats.loop_closure_searches);
   EXPECT_EQ(bounded.stats.loop_closures_found, unbounded.stats.loop_closures_found);

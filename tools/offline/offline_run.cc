@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "fusemap/common/math.h"
+#include "fusemap/common/process_memory.h"
 #include "fusemap/common/thread_pool.h"
 #include "fusemap/eval/relation_error.h"
 #include "fusemap/eval/trajectory.h"
@@ -33,6 +34,9 @@
 namespace fusemap {
 namespace offline_tool {
 namespace {
+
+// Resident memory is sampled every this many scans (`rss_mb_over_time`).
+constexpr int kRssSampleScans = 250;
 
 double Percentile(std::vector<double> values, double q) {
   if (values.empty()) return 0.0;
@@ -94,6 +98,7 @@ int Run(const Args& args) {
   session::SlamSession session(config, executor.get(), /*record_cloud_cost=*/true);
 
   std::vector<double> scan_cost_ms;
+  std::vector<double> rss_mb;  // every kRssSampleScans scans
   int scans = 0, rgbd_frames = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
   double first_stamp_s = 0.0, last_stamp_s = 0.0;
   bool have_stamp = false;
@@ -131,6 +136,9 @@ int Run(const Args& args) {
       scan_cost_ms.push_back(
           std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
       ++scans;
+      if (scans % kRssSampleScans == 0) {
+        rss_mb.push_back(static_cast<double>(common::ResidentMemoryBytes()) / 1048576.0);
+      }
     } else if (const auto* odometry = std::get_if<sensor::OdometryData>(&message)) {
       session.AddOdometry(*odometry);
     } else if (const auto* imu = std::get_if<sensor::ImuData>(&message)) {
@@ -189,14 +197,22 @@ int Run(const Args& args) {
     have_stamp = true;
     last_stamp_s = std::max(last_stamp_s, stamp_s);
     const auto now = std::chrono::steady_clock::now();
-    if (!args.quiet && now - last_progress > std::chrono::seconds(1)) {
+    if (now - last_progress > std::chrono::seconds(1)) {
       last_progress = now;
-      std::fprintf(stderr, "\r[fusemap_offline] scans=%d log_t=%.1fs wall=%.1fs", scans,
-                   last_stamp_s - first_stamp_s,
-                   std::chrono::duration<double>(now - start).count());
+      // As fusemapd does: grids freed in the middle of the heap go back to the system.
+      common::ReleaseFreeMemory();
+      if (!args.quiet) {
+        std::fprintf(stderr, "\r[fusemap_offline] scans=%d log_t=%.1fs wall=%.1fs", scans,
+                     last_stamp_s - first_stamp_s,
+                     std::chrono::duration<double>(now - start).count());
+      }
     }
   }
   session.Finish();
+  // The final optimisation released the loop-closure grids; their pages go back before the
+  // map is drawn.
+  common::ReleaseFreeMemory();
+  const double end_of_slam_rss_mb = static_cast<double>(common::ResidentMemoryBytes()) / 1048576.0;
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!args.quiet) std::fprintf(stderr, "\n");
@@ -272,17 +288,21 @@ int Run(const Args& args) {
     return count > 0 ? static_cast<double>(bytes) / count / 1024.0 : 0.0;
   };
   std::printf(
-      "global_slam_memory: max_pending_searches=%d searches_skipped=%d submap_grids_mb=%.1f matchers=%d "
-      "matcher_grids_mb=%.1f matcher_builds=%d matcher_evictions=%d node_clouds_mb=%.1f "
+      "global_slam_memory: max_pending_searches=%d searches_skipped=%d submap_grids_mb=%.1f "
+      "max_matchers=%d max_matcher_grids_mb=%.1f matcher_builds=%d matcher_evictions=%d node_clouds_mb=%.1f "
       "kb_per_submap=%.1f kb_per_matcher=%.1f kb_per_node=%.2f\n",
-      global.max_pending_searches, global.searches_skipped, global.submap_bytes / 1048576.0, global.matchers,
-      global.matcher_bytes / 1048576.0, global.matcher_builds, global.matcher_evictions,
+      global.max_pending_searches, global.searches_skipped, global.submap_bytes / 1048576.0,
+      global.max_matchers, global.max_matcher_bytes / 1048576.0, global.matcher_builds, global.matcher_evictions,
       global.node_bytes / 1048576.0,
       per(global.submap_bytes, global.finished_submaps_held),
-      per(global.matcher_bytes, global.matchers), per(global.node_bytes, global.nodes));
+      per(global.max_matcher_bytes, global.max_matchers), per(global.node_bytes, global.nodes));
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
+  std::string rss_line;
+  for (double mb : rss_mb) rss_line += " " + std::to_string(static_cast<int>(mb + 0.5));
+  std::printf("rss_mb_over_time: every_scans=%d end_of_slam=%.0f samples=%s\n", kRssSampleScans,
+              end_of_slam_rss_mb, rss_line.empty() ? " none" : rss_line.c_str());
   // Whether the cost of a scan grows with the map: the first and the last 1,000 scans (the
   // same scans twice on a shorter log).
   const size_t window = std::min<size_t>(1000, scan_cost_ms.size());

@@ -38,7 +38,7 @@ struct PoseGraphOptions2D {
   // it, the grids of the submaps least recently searched are released and rebuilt when a
   // search needs them again: a campus has tens of submaps of several MB each, and a search
   // reaches only the few within max_constraint_distance_m.
-  double matcher_memory_budget_mb = 128.0;
+  double matcher_memory_budget_mb = 64.0;
   // Loop-closure searches queued at once. A search that would queue beyond it is skipped (and
   // counted): a daemon whose searches cannot keep up with the data drops some, rather than
   // fall further behind without bound. Far above what the shared logs queue (see README).
@@ -138,6 +138,10 @@ class PoseGraph2D {
     size_t matcher_bytes = 0;
     size_t node_bytes = 0;
     int matchers = 0;  // submaps whose precomputation grids are held
+    // The most precomputation memory held at once since the graph was made, and the number of
+    // submaps' grids that was (not checkpointed). RunFinalOptimization releases them all.
+    size_t max_matcher_bytes = 0;
+    int max_matchers = 0;
     // Precomputations run (first builds and rebuilds), and grids released to stay within
     // matcher_memory_budget_mb (not checkpointed).
     int matcher_builds = 0;
