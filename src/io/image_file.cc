@@ -31,7 +31,7 @@ bool WriteImageFile(const cv::Mat& image, const std::string& path, std::string* 
     *error = path + ": cannot encode the image";
     return false;
   }
-  return WriteFileAtomically(path, std::string(encoded.begin(), encoded.end()), error);
+  return WriteFileAtomically(path, {{encoded.data(), encoded.size()}}, error);
 }
 
 bool ReadImageFile(const std::string& path, int flags, int max_side_px, cv::Mat* image,

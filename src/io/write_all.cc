@@ -40,10 +40,13 @@ bool SyncAndRename(const std::string& tmp, const std::string& path, std::string*
 
 }  // namespace
 
-bool WriteAll(int fd, const std::string& bytes) {
+bool WriteAll(int fd, const std::string& bytes) { return WriteAll(fd, bytes.data(), bytes.size()); }
+
+bool WriteAll(int fd, const void* data, size_t size) {
+  const char* bytes = static_cast<const char*>(data);
   size_t done = 0;
-  while (done < bytes.size()) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+  while (done < size) {
+    const ssize_t n = ::write(fd, bytes + done, size - done);
     if (n < 0 && errno == EINTR) continue;
     if (n == 0) errno = ENOSPC;  // write(2) made no progress: treat as a full device
     if (n <= 0) return false;
@@ -53,12 +56,21 @@ bool WriteAll(int fd, const std::string& bytes) {
 }
 
 bool WriteFileAtomically(const std::string& path, const std::string& bytes, std::string* error) {
+  return WriteFileAtomically(path, {{bytes.data(), bytes.size()}}, error);
+}
+
+bool WriteFileAtomically(const std::string& path, const std::vector<ByteSpan>& pieces,
+                         std::string* error) {
   return WriteFileAtomically(
       path,
       [&](const std::string& tmp, std::string* write_error) {
         const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
         if (fd < 0) return Fail(path, "cannot open " + tmp + " for writing", errno, write_error);
-        if (!WriteAll(fd, bytes)) {
+        bool written = true;
+        for (const ByteSpan& piece : pieces) {
+          written = written && WriteAll(fd, piece.data, piece.size);
+        }
+        if (!written) {
           const int saved = errno;
           ::close(fd);
           return Fail(path, "write failed", saved, write_error);

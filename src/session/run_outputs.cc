@@ -6,6 +6,7 @@
 #include <string>
 #include <system_error>
 #include <unordered_set>
+#include <utility>
 
 #include "fusemap/io/cloud_image.h"
 #include "fusemap/io/cloud_writer.h"
@@ -38,19 +39,20 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
     *error = "no submaps yet: no map written";
     return false;
   }
-  const mapping::GridImage image = mapping::RenderMap(grids, run.map_resolution_m);
+  *image_out = mapping::RenderMap(grids, run.map_resolution_m);
+  // The pixels are lent to the writers, not copied: a campus-sized map has tens of millions,
+  // and map.png's colour canvas already takes three bytes for each.
   io::MapImage map;
-  map.width = image.width;
-  map.height = image.height;
-  map.resolution_m = image.resolution_m;
-  map.origin_m = image.origin_m;
-  map.pixels = image.pixels;
-  if (!io::WriteMapPgmYaml(map, out + "map", error) ||
-      !io::WriteMapPng(map, xy, out + "map.png", error)) {
-    return false;
-  }
+  map.width = image_out->width;
+  map.height = image_out->height;
+  map.resolution_m = image_out->resolution_m;
+  map.origin_m = image_out->origin_m;
+  map.pixels = std::move(image_out->pixels);
+  const bool written = io::WriteMapPgmYaml(map, out + "map", error) &&
+                       io::WriteMapPng(map, xy, out + "map.png", error);
+  image_out->pixels = std::move(map.pixels);
+  if (!written) return false;
   report->files.insert(report->files.end(), {out + "map.pgm", out + "map.yaml", out + "map.png"});
-  *image_out = image;
   return true;
 }
 

@@ -98,6 +98,27 @@ TEST_F(MapWriterTest, PngShowsTrajectoryWithMarkers) {
   EXPECT_LT(end_ring[1], 100);
 }
 
+TEST_F(MapWriterTest, PngOfALargeMapIsShrunkWithTheTrajectoryInPlace) {
+  MapImage map;
+  map.width = 9000;  // shrunk by 3 to 3000 x 20
+  map.height = 60;
+  map.resolution_m = 0.1;
+  map.origin_m = Eigen::Vector2d(0.0, 0.0);
+  map.pixels.assign(static_cast<size_t>(map.width) * map.height, 254);
+  // y = 3.0 m is the edge between cell rows 29 and 30 from the top, i.e. between shrunk rows
+  // 9 and 10; x = 450 m is shrunk column 1500.
+  const std::vector<Eigen::Vector2d> xy = {{100.0, 3.0}, {450.0, 3.0}, {800.0, 3.0}};
+  std::string error;
+  ASSERT_TRUE(WriteMapPng(map, xy, dir_ + "/map.png", &error)) << error;
+  const cv::Mat image = cv::imread(dir_ + "/map.png", cv::IMREAD_COLOR);
+  ASSERT_EQ(image.cols, 3000);
+  ASSERT_EQ(image.rows, 20);
+  const cv::Vec3b near_line = image.at<cv::Vec3b>(9, 1500);
+  EXPECT_GT(near_line[0], 200);  // Blue line (BGR).
+  EXPECT_LT(near_line[2], 200);
+  EXPECT_EQ(image.at<cv::Vec3b>(2, 1500), cv::Vec3b(254, 254, 254));
+}
+
 }  // namespace
 }  // namespace io
 }  // namespace fusemap

@@ -26,7 +26,8 @@ struct MapImage {
 bool WriteMapPgmYaml(const MapImage& map, const std::string& path_prefix, std::string* error);
 
 // Writes a colour PNG of the map with the trajectory (world metres) drawn as an antialiased
-// polyline, its start marked by a green and its end by a red circle.
+// polyline, its start marked by a green and its end by a red circle. A map longer than 4,096
+// cells on a side is shrunk by the smallest whole factor that brings it within 4,096 pixels.
 bool WriteMapPng(const MapImage& map, const std::vector<Eigen::Vector2d>& trajectory_xy,
                  const std::string& path, std::string* error);
 
