@@ -71,18 +71,25 @@ TEST_F(MapWriterTest, RejectsInconsistentImage) {
   EXPECT_NE(error.find("/nonexistent/dir/map.pgm"), std::string::npos);
 }
 
-TEST_F(MapWriterTest, PngShowsTrajectoryWithMarkers) {
+// An all-free map of width x height cells of 0.1 m, origin at (0, 0), its trajectory drawn
+// into DIR/map.png and read back.
+cv::Mat DrawFreeMap(int width, int height, const std::vector<Eigen::Vector2d>& xy,
+                    const std::string& dir) {
   MapImage map;
-  map.width = 100;
-  map.height = 60;
+  map.width = width;
+  map.height = height;
   map.resolution_m = 0.1;
   map.origin_m = Eigen::Vector2d(0.0, 0.0);
-  map.pixels.assign(100 * 60, 254);
-  // Horizontal line at y = 3.05 m: pixel row 60 - 30.5 - 0.5 = 29 from the top.
-  const std::vector<Eigen::Vector2d> xy = {{1.05, 3.05}, {5.05, 3.05}, {9.05, 3.05}};
+  map.pixels.assign(static_cast<size_t>(width) * height, 254);
   std::string error;
-  ASSERT_TRUE(WriteMapPng(map, xy, dir_ + "/map.png", &error)) << error;
-  const cv::Mat image = cv::imread(dir_ + "/map.png", cv::IMREAD_COLOR);
+  EXPECT_TRUE(WriteMapPng(map, xy, dir + "/map.png", &error)) << error;
+  return cv::imread(dir + "/map.png", cv::IMREAD_COLOR);
+}
+
+TEST_F(MapWriterTest, PngShowsTrajectoryWithMarkers) {
+  // Horizontal line at y = 3.05 m: pixel row 60 - 30.5 - 0.5 = 29 from the top.
+  const cv::Mat image =
+      DrawFreeMap(100, 60, {{1.05, 3.05}, {5.05, 3.05}, {9.05, 3.05}}, dir_);
   ASSERT_EQ(image.rows, 60);
   ASSERT_EQ(image.cols, 100);
   const cv::Vec3b on_line = image.at<cv::Vec3b>(29, 50);
@@ -99,18 +106,10 @@ TEST_F(MapWriterTest, PngShowsTrajectoryWithMarkers) {
 }
 
 TEST_F(MapWriterTest, PngOfALargeMapIsShrunkWithTheTrajectoryInPlace) {
-  MapImage map;
-  map.width = 9000;  // shrunk by 3 to 3000 x 20
-  map.height = 60;
-  map.resolution_m = 0.1;
-  map.origin_m = Eigen::Vector2d(0.0, 0.0);
-  map.pixels.assign(static_cast<size_t>(map.width) * map.height, 254);
-  // y = 3.0 m is the edge between cell rows 29 and 30 from the top, i.e. between shrunk rows
-  // 9 and 10; x = 450 m is shrunk column 1500.
-  const std::vector<Eigen::Vector2d> xy = {{100.0, 3.0}, {450.0, 3.0}, {800.0, 3.0}};
-  std::string error;
-  ASSERT_TRUE(WriteMapPng(map, xy, dir_ + "/map.png", &error)) << error;
-  const cv::Mat image = cv::imread(dir_ + "/map.png", cv::IMREAD_COLOR);
+  // 9000 x 60 cells are shrunk by 3 to 3000 x 20 pixels. y = 3.0 m is the edge between cell
+  // rows 29 and 30 from the top, i.e. between shrunk rows 9 and 10; x = 450 m is shrunk column
+  // 1500.
+  const cv::Mat image = DrawFreeMap(9000, 60, {{100.0, 3.0}, {450.0, 3.0}, {800.0, 3.0}}, dir_);
   ASSERT_EQ(image.cols, 3000);
   ASSERT_EQ(image.rows, 20);
   const cv::Vec3b near_line = image.at<cv::Vec3b>(9, 1500);
