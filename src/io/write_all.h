@@ -1,8 +1,8 @@
 #ifndef FUSEMAP_IO_WRITE_ALL_H_
 #define FUSEMAP_IO_WRITE_ALL_H_
 
-#include <functional>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
