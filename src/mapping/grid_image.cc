@@ -20,17 +20,17 @@ struct Box {
 };
 
 // Map-frame bounding box of the known cells of `grid`; empty if none is known.
-Box KnownBoxInMap(const PlacedGrid& placed) {
+Box KnownBoxInMap(const common::Rigid2d& T_map_grid, const ProbabilityGrid& grid) {
   Box box;
   Eigen::Array2i min_cell, max_cell;
-  if (!placed.second->ComputeKnownBounds(&min_cell, &max_cell)) return box;
-  const MapLimits& limits = placed.second->limits();
+  if (!grid.ComputeKnownBounds(&min_cell, &max_cell)) return box;
+  const MapLimits& limits = grid.limits();
   const Eigen::Vector2d lo = limits.origin_m + limits.resolution_m * min_cell.cast<double>().matrix();
   const Eigen::Vector2d hi =
       limits.origin_m + limits.resolution_m * (max_cell + 1).cast<double>().matrix();
   for (const Eigen::Vector2d& corner : {lo, hi, Eigen::Vector2d(lo.x(), hi.y()),
                                         Eigen::Vector2d(hi.x(), lo.y())}) {
-    box.Extend(placed.first * corner);
+    box.Extend(T_map_grid * corner);
   }
   return box;
 }
@@ -44,13 +44,26 @@ uint8_t ProbabilityToPixel(float probability) {
 }
 
 GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m) {
+  std::vector<GridSource> sources;
+  sources.reserve(grids.size());
+  for (const PlacedGrid& placed : grids) {
+    // Not owned: the caller holds the grid for the whole call.
+    const ProbabilityGrid* grid = placed.second;
+    sources.push_back({placed.first, [grid] {
+                         return std::shared_ptr<const ProbabilityGrid>(std::shared_ptr<void>(), grid);
+                       }});
+  }
+  return RenderMap(sources, resolution_m);
+}
+
+GridImage RenderMap(const std::vector<GridSource>& grids, double resolution_m) {
   assert(resolution_m > 0.0);
   GridImage image;
   image.resolution_m = resolution_m;
   std::vector<Box> boxes;
   Box total;
-  for (const PlacedGrid& placed : grids) {
-    boxes.push_back(KnownBoxInMap(placed));
+  for (const GridSource& source : grids) {
+    boxes.push_back(KnownBoxInMap(source.T_map_grid, *source.fetch()));
     if (boxes.back().empty()) continue;
     total.Extend(boxes.back().min);
     total.Extend(boxes.back().max);
@@ -73,8 +86,9 @@ GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m) {
   std::vector<uint16_t> best(num_pixels, kUnknownValue);
   for (size_t g = 0; g < grids.size(); ++g) {
     if (boxes[g].empty()) continue;
-    const ProbabilityGrid& grid = *grids[g].second;
-    const common::Rigid2d T_grid_map = grids[g].first.inverse();
+    const std::shared_ptr<const ProbabilityGrid> held_grid = grids[g].fetch();
+    const ProbabilityGrid& grid = *held_grid;
+    const common::Rigid2d T_grid_map = grids[g].T_map_grid.inverse();
     const int col_begin =
         std::max(0, static_cast<int>(std::floor((boxes[g].min.x() - corner.x()) / resolution_m)));
     const int col_end = std::min(

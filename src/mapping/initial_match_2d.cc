@@ -118,16 +118,17 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
   const bool same_submap = cached_submap_.lock() == submap;
   if (matcher_ == nullptr || !same_submap ||
       submap->num_range_data() - cached_num_range_data_ >= options_.refresh_every_n_insertions) {
+    const std::shared_ptr<const ProbabilityGrid> grid = submap->grid();
     const int factor = std::max(
         1, static_cast<int>(std::lround(options_.matching_resolution_m /
-                                        submap->grid().limits().resolution_m)));
-    const double coarse_resolution_m = factor * submap->grid().limits().resolution_m;
+                                        grid->limits().resolution_m)));
+    const double coarse_resolution_m = factor * grid->limits().resolution_m;
     const int pad_cells =
         options_.unknown_probability > kMinProbability
             ? static_cast<int>(std::ceil(options_.unknown_padding_m / coarse_resolution_m))
             : 0;
     const ProbabilityGrid coarse =
-        MaxPoolGrid(submap->grid(), factor, options_.unknown_probability, pad_cells);
+        MaxPoolGrid(*grid, factor, options_.unknown_probability, pad_cells);
     matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(
         coarse, options_.fast_correlative_scan_matcher);
     if (options_.min_score_gain > 0.0) {

@@ -119,7 +119,8 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
   const auto submaps = active_submaps_.submaps();
   if (submaps.empty()) return predicted;
   // The older submap holds more data, so it is the better reference (Cartographer does the same).
-  const ProbabilityGrid& grid = submaps.front()->grid();
+  const std::shared_ptr<const ProbabilityGrid> held_grid = submaps.front()->grid();
+  const ProbabilityGrid& grid = *held_grid;
   // The fine matchers' priors pull towards `prior`. A branch-and-bound answer replaces a
   // prediction it found to be wrong; it is only good to a search cell, so Ceres is then held
   // to the fine correlative answer instead.
@@ -149,7 +150,8 @@ common::Rigid2d LocalTrajectoryBuilder2D::ScanMatch(const common::Rigid2d& predi
 common::Rigid2d LocalTrajectoryBuilder2D::MatchWidenedAtWindowEdge(
     const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud, double* score) {
   const auto submaps = active_submaps_.submaps();
-  const ProbabilityGrid& grid = submaps.front()->grid();
+  const std::shared_ptr<const ProbabilityGrid> held_grid = submaps.front()->grid();
+  const ProbabilityGrid& grid = *held_grid;
   common::Rigid2d initial;
   bool at_edge = false;
   *score = real_time_matcher_.Match(predicted, cloud, grid, &initial, &at_edge);

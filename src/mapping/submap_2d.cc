@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <utility>
 
+#include "fusemap/mapping/deflated_cells.h"
+
 namespace fusemap {
 namespace mapping {
 namespace {
@@ -52,19 +54,67 @@ SubmapsOptions ParseSubmapsOptions(common::ConfigReader& reader) {
 
 Submap2D::Submap2D(const Eigen::Vector2f& origin_in_local_m, double resolution_m)
     : T_local_submap_(common::Rigid2d::Translation(origin_in_local_m.cast<double>())),
-      grid_(InitialLimits(origin_in_local_m, resolution_m)) {}
+      grid_(std::make_shared<ProbabilityGrid>(InitialLimits(origin_in_local_m, resolution_m))) {}
 
 Submap2D::Submap2D(const SubmapState2D& state)
     : T_local_submap_(state.T_local_submap),
-      grid_(state.limits, state.cells),
       num_range_data_(state.num_range_data),
-      finished_(state.finished) {}
+      finished_(state.finished),
+      grid_(std::make_shared<ProbabilityGrid>(state.limits, state.cells)) {}
+
+std::shared_ptr<const ProbabilityGrid> Submap2D::grid() const {
+  {
+    std::lock_guard<std::mutex> lock(storage_mutex_);
+    if (grid_) return grid_;
+  }
+  // Compacted: deflated_cells_ and compact_limits_ never change again, so they are read
+  // without the lock, and grid_bytes() (health, under global SLAM's lock) never waits for
+  // an inflation.
+  std::vector<uint16_t> cells;
+  const size_t num_cells =
+      static_cast<size_t>(compact_limits_.num_x_cells) * compact_limits_.num_y_cells;
+  const bool inflated = InflateCells(deflated_cells_, num_cells, &cells);
+  // Made by DeflateCells in this process from exactly these cells.
+  assert(inflated);
+  (void)inflated;
+  return std::make_shared<ProbabilityGrid>(compact_limits_, std::move(cells));
+}
+
+size_t Submap2D::grid_bytes() const {
+  std::lock_guard<std::mutex> lock(storage_mutex_);
+  return grid_ ? grid_->bytes() : deflated_cells_.capacity();
+}
+
+void Submap2D::Compact() const {
+  assert(finished_);
+  std::shared_ptr<const ProbabilityGrid> grid;
+  {
+    std::lock_guard<std::mutex> lock(storage_mutex_);
+    if (!grid_) return;
+    grid = grid_;
+  }
+  // Deflated outside the lock: the cells of a finished submap do not change, and readers need
+  // not wait the tens of milliseconds a large grid takes.
+  std::vector<uint8_t> deflated;
+  if (!DeflateCells(grid->cells(), &deflated)) return;  // out of memory: stays as it is
+  std::lock_guard<std::mutex> lock(storage_mutex_);
+  if (!grid_) return;  // another thread compacted it meanwhile
+  compact_limits_ = grid_->limits();
+  deflated_cells_ = std::move(deflated);
+  grid_.reset();
+}
+
+bool Submap2D::compacted() const {
+  std::lock_guard<std::mutex> lock(storage_mutex_);
+  return !grid_;
+}
 
 SubmapState2D Submap2D::ExportState() const {
   SubmapState2D state;
   state.T_local_submap = T_local_submap_;
-  state.limits = grid_.limits();
-  state.cells = grid_.cells();
+  const std::shared_ptr<const ProbabilityGrid> grid = this->grid();
+  state.limits = grid->limits();
+  state.cells = grid->cells();
   state.num_range_data = num_range_data_;
   state.finished = finished_;
   return state;
@@ -73,7 +123,8 @@ SubmapState2D Submap2D::ExportState() const {
 void Submap2D::InsertRangeData(const sensor::RangeData& range_data_in_local,
                                const RangeDataInserter2D& inserter) {
   assert(!finished_);
-  const bool inserted = inserter.Insert(range_data_in_local, &grid_);
+  // Unfinished submaps are never compacted, and only this thread writes them.
+  const bool inserted = inserter.Insert(range_data_in_local, grid_.get());
   assert(inserted);
   (void)inserted;
   ++num_range_data_;
@@ -90,12 +141,14 @@ bool LimitsCanHold(const MapLimits& limits, const sensor::RangeData& range_data)
 }  // namespace
 
 bool Submap2D::CanInsert(const sensor::RangeData& range_data_in_local) const {
-  return LimitsCanHold(grid_.limits(), range_data_in_local);
+  return LimitsCanHold(grid()->limits(), range_data_in_local);
 }
 
 void Submap2D::Finish() {
   assert(!finished_);
-  grid_ = grid_.Cropped();
+  auto cropped = std::make_shared<ProbabilityGrid>(grid_->Cropped());
+  std::lock_guard<std::mutex> lock(storage_mutex_);
+  grid_ = std::move(cropped);
   finished_ = true;
 }
 

@@ -50,8 +50,9 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
 LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
                                            const ConstraintBuilderOptions2D& options)
     : submap_(std::move(submap)),
+      grid_(submap_->grid()),
       options_(options),
-      fast_matcher_(submap_->grid(), options.fast_correlative_scan_matcher),
+      fast_matcher_(*grid_, options.fast_correlative_scan_matcher),
       ceres_matcher_(options.ceres_scan_matcher) {}
 
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
@@ -69,7 +70,7 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   }
   common::Rigid2d refined;
   ceres::Solver::Summary summary;
-  ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, submap_->grid(), &refined,
+  ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, *grid_, &refined,
                        &summary);
   Constraint2D constraint;
   constraint.T_submap_node = T_grid_submap.inverse() * refined;

@@ -72,6 +72,13 @@ std::unique_ptr<MapBuilder2D> MapBuilder2D::Restore(const MapBuilderOptions2D& o
   }
   std::vector<std::shared_ptr<mapping::Submap2D>> active;
   for (int index : state.active_submaps) active.push_back(submaps.at(index));
+  // As AddNode does once local SLAM lets go of a finished submap.
+  for (const auto& submap : submaps) {
+    if (submap && submap->finished() &&
+        std::find(active.begin(), active.end(), submap) == active.end()) {
+      submap->Compact();
+    }
+  }
   builder->local_.RestoreState(state.local_slam, std::move(active));
   builder->pose_graph_.RestoreState(
       state.pose_graph,

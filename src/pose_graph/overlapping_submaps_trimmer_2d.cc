@@ -54,14 +54,16 @@ std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
                                    const OverlappingSubmapsTrimmerOptions2D& options) {
   assert(options.enabled());
   if (submaps.empty()) return {};
-  const double resolution_m = submaps.front().grid->limits().resolution_m;
+  double resolution_m = 0.0;  // the first grid's
   const int keep = options.fresh_submaps_count;
 
   std::unordered_map<std::uint64_t, FreshSubmaps> cells;
   for (size_t i = 0; i < submaps.size(); ++i) {
     assert(i == 0 || submaps[i - 1].submap < submaps[i].submap);
-    const mapping::ProbabilityGrid& grid = *submaps[i].grid;
+    const std::shared_ptr<const mapping::ProbabilityGrid> held_grid = submaps[i].grid();
+    const mapping::ProbabilityGrid& grid = *held_grid;
     const mapping::MapLimits& limits = grid.limits();
+    if (i == 0) resolution_m = limits.resolution_m;
     Eigen::Array2i min_cell, max_cell;
     if (!grid.ComputeKnownBounds(&min_cell, &max_cell)) continue;
     for (int y = min_cell.y(); y <= max_cell.y(); ++y) {

@@ -99,6 +99,10 @@ int PoseGraph2D::AddNode(
                                             ? common::Rigid2d::Identity()
                                             : T_map_nodes_.back() * nodes_.back().T_local_node.inverse();
     node = stats_.nodes;
+    // The submaps of the previous node that this one is not inserted into have left local
+    // SLAM (it keeps a finished submap for one more scan): see below.
+    const std::vector<int> previous_inserted_into =
+        nodes_.empty() ? std::vector<int>() : nodes_.back().inserted_into;
     nodes_.push_back({node, stamp_s, T_local_node, filtered_cloud, {}, false});
     T_map_nodes_.push_back(T_map_local * T_local_node);
     ++stats_.nodes;
@@ -127,18 +131,31 @@ int PoseGraph2D::AddNode(
         tasks.push_back(MakeMatcherTask(s, submap, true, {}));
       }
     }
-    if (options_.optimize_every_n_nodes == 0) return node;
-    // The new node against every finished submap near it.
-    for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
-      if (submaps_[s].searchable) ScheduleSearchLocked(node, s);
+    // Finished submaps are held for the whole run but read only to precompute, trim and draw:
+    // once local SLAM has let go of one, its cells are deflated (lossless; outdoors a submap
+    // spans 30 m rays and takes megabytes).
+    for (int s : previous_inserted_into) {
+      const std::vector<int>& now = nodes_.back().inserted_into;
+      const SubmapData& data = submaps_[s];
+      if (data.finished && !data.trimmed && std::find(now.begin(), now.end(), s) == now.end()) {
+        tasks.push_back([submap = data.submap] { submap->Compact(); });
+      }
     }
-    if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes && !optimization_running_) {
-      nodes_since_optimization_ = 0;
-      optimization_running_ = true;
-      pending_tasks_.push_back([this] { RunOptimization(options_.optimization.max_num_iterations); });
+    if (options_.optimize_every_n_nodes != 0) {
+      // The new node against every finished submap near it.
+      for (int s = 0; s < static_cast<int>(submaps_.size()); ++s) {
+        if (submaps_[s].searchable) ScheduleSearchLocked(node, s);
+      }
+      if (++nodes_since_optimization_ >= options_.optimize_every_n_nodes &&
+          !optimization_running_) {
+        nodes_since_optimization_ = 0;
+        optimization_running_ = true;
+        pending_tasks_.push_back(
+            [this] { RunOptimization(options_.optimization.max_num_iterations); });
+      }
+      tasks.insert(tasks.end(), pending_tasks_.begin(), pending_tasks_.end());
+      pending_tasks_.clear();
     }
-    tasks.insert(tasks.end(), pending_tasks_.begin(), pending_tasks_.end());
-    pending_tasks_.clear();
   }
   // Scheduled outside the lock: an inline executor runs the task right here.
   for (auto& task : tasks) executor_->Schedule(std::move(task));
@@ -390,7 +407,6 @@ void PoseGraph2D::MaybeTrim() {
   const OverlappingSubmapsTrimmerOptions2D& trimmer = options_.overlapping_submaps_trimmer;
   if (!trimmer.enabled()) return;
   std::vector<PlacedSubmap2D> placed;
-  std::vector<std::shared_ptr<const mapping::Submap2D>> grids_in_use;
   {
     std::lock_guard<std::mutex> lock(mutex_);
     if (stats_.finished_submaps - finished_submaps_at_last_trim_ < trimmer.min_added_submaps_count) {
@@ -400,13 +416,13 @@ void PoseGraph2D::MaybeTrim() {
     for (size_t s = 0; s < submaps_.size(); ++s) {
       const SubmapData& data = submaps_[s];
       if (!data.finished || data.trimmed) continue;
-      grids_in_use.push_back(data.submap);
       placed.push_back({static_cast<int>(s),
                         T_map_submaps_[s] * data.submap->T_local_submap().inverse(),
-                        &data.submap->grid()});
+                        [submap = data.submap] { return submap->grid(); }});
     }
   }
-  // Finished grids are immutable, so coverage is computed without holding the lock.
+  // Finished grids are immutable, so coverage is computed without holding the lock; each
+  // placed submap holds its submap, so trimming meanwhile cannot free it.
   const auto start = std::chrono::steady_clock::now();
   const std::vector<int> trim = FindSubmapsToTrim(placed, trimmer);
   std::lock_guard<std::mutex> lock(mutex_);
@@ -586,7 +602,7 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   for (const SubmapData& data : submaps_) {
     // Only finished grids: local SLAM may be growing the others on its own thread.
     if (data.submap && data.finished) {
-      stats.submap_bytes += data.submap->grid().bytes();
+      stats.submap_bytes += data.submap->grid_bytes();
       ++stats.finished_submaps_held;
     }
     if (data.matcher) ++stats.matchers;

@@ -29,11 +29,12 @@ bool WriteMap(const RunOutputs& run, const std::vector<Eigen::Vector2d>& xy,
               std::string* error) {
   const auto snapshot = run.builder->pose_graph().Snapshot();
   const auto submaps = run.builder->pose_graph().submaps();
-  std::vector<mapping::PlacedGrid> grids;
+  // Compacted submaps are inflated one at a time while drawn.
+  std::vector<mapping::GridSource> grids;
   for (size_t i = 0; i < submaps.size() && i < snapshot->T_map_submaps.size(); ++i) {
     if (!submaps[i]) continue;  // trimmed: newer submaps cover its area
-    grids.emplace_back(snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
-                       &submaps[i]->grid());
+    grids.push_back({snapshot->T_map_submaps[i] * submaps[i]->T_local_submap().inverse(),
+                     [submap = submaps[i]] { return submap->grid(); }});
   }
   if (grids.empty()) {
     *error = "no submaps yet: no map written";

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
 
 namespace fusemap {
 namespace mapping {
@@ -18,7 +20,7 @@ sensor::RangeData OneReturn(const Eigen::Vector2f& origin) {
 
 TEST(Submap2DTest, StartsWithA100CellBoxCentredOnItsOrigin) {
   const Submap2D submap(Eigen::Vector2f(3.f, -2.f), 0.05);
-  const MapLimits& limits = submap.grid().limits();
+  const MapLimits limits = submap.grid()->limits();
   EXPECT_EQ(limits.num_x_cells, 100);
   EXPECT_EQ(limits.num_y_cells, 100);
   EXPECT_NEAR(limits.resolution_m, 0.05, 1e-12);
@@ -36,11 +38,48 @@ TEST(Submap2DTest, InsertsInLocalCoordinates) {
   const RangeDataInserter2D inserter{ProbabilityGridRangeDataInserterOptions()};
   submap.InsertRangeData(OneReturn(Eigen::Vector2f(3.f, -2.f)), inserter);
   EXPECT_EQ(submap.num_range_data(), 1);
-  const MapLimits& limits = submap.grid().limits();
-  EXPECT_NEAR(submap.grid().GetProbability(limits.GetCellIndex(Eigen::Vector2f(4.f, -2.f))),
-              0.55f, 1e-4f);
-  EXPECT_NEAR(submap.grid().GetProbability(limits.GetCellIndex(Eigen::Vector2f(3.5f, -2.f))),
-              0.49f, 1e-4f);
+  const std::shared_ptr<const ProbabilityGrid> grid = submap.grid();
+  const MapLimits& limits = grid->limits();
+  EXPECT_NEAR(grid->GetProbability(limits.GetCellIndex(Eigen::Vector2f(4.f, -2.f))), 0.55f, 1e-4f);
+  EXPECT_NEAR(grid->GetProbability(limits.GetCellIndex(Eigen::Vector2f(3.5f, -2.f))), 0.49f, 1e-4f);
+}
+
+// Global SLAM keeps finished submaps deflated: the same cells come back, in far less memory,
+// and a grid handed out before compaction stays valid.
+TEST(Submap2DTest, CompactedSubmapKeepsItsCellsInLessMemory) {
+  Submap2D submap(Eigen::Vector2f(0.f, 0.f), 0.05);
+  const RangeDataInserter2D inserter{ProbabilityGridRangeDataInserterOptions()};
+  for (int i = 0; i < 20; ++i) {
+    sensor::RangeData data;
+    data.origin = Eigen::Vector2f(0.1f * i, 0.f);
+    for (int beam = 0; beam < 360; ++beam) {
+      const float angle_rad = beam * 3.14159265f / 180.f;
+      data.returns.push_back(data.origin + 8.f * Eigen::Vector2f(std::cos(angle_rad), std::sin(angle_rad)));
+    }
+    submap.InsertRangeData(data, inserter);
+  }
+  submap.Finish();
+  const std::shared_ptr<const ProbabilityGrid> before = submap.grid();
+  const size_t inflated_bytes = submap.grid_bytes();
+  EXPECT_FALSE(submap.compacted());
+
+  submap.Compact();
+  ASSERT_TRUE(submap.compacted());
+  EXPECT_LT(submap.grid_bytes() * 3, inflated_bytes);
+  const std::shared_ptr<const ProbabilityGrid> after = submap.grid();
+  EXPECT_NE(after.get(), before.get());
+  EXPECT_EQ(after->limits().num_x_cells, before->limits().num_x_cells);
+  EXPECT_EQ(after->limits().num_y_cells, before->limits().num_y_cells);
+  EXPECT_EQ(after->limits().origin_m, before->limits().origin_m);
+  EXPECT_EQ(after->cells(), before->cells());
+  Eigen::Array2i min_before, max_before, min_after, max_after;
+  ASSERT_TRUE(before->ComputeKnownBounds(&min_before, &max_before));
+  ASSERT_TRUE(after->ComputeKnownBounds(&min_after, &max_after));
+  EXPECT_TRUE((min_before == min_after).all() && (max_before == max_after).all());
+  // A checkpoint of a compacted submap is the same as of the inflated one.
+  EXPECT_EQ(submap.ExportState().cells, before->cells());
+  submap.Compact();  // again: nothing to do
+  EXPECT_TRUE(submap.compacted());
 }
 
 TEST(ActiveSubmaps2DTest, FinishesSubmapsInOrderWithTwiceNumRangeData) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <functional>
 #include <memory>
 
 namespace fusemap {
@@ -10,19 +11,22 @@ namespace {
 
 constexpr double kResolutionM = 0.05;
 
-// A 5 m x 5 m grid whose known cells are the rectangle [0, width_m) x [0, height_m).
-std::unique_ptr<mapping::ProbabilityGrid> KnownRectangle(double width_m, double height_m) {
+using GridSource = std::function<std::shared_ptr<const mapping::ProbabilityGrid>()>;
+
+// A 5 m x 5 m grid whose known cells are the rectangle [0, width_m) x [0, height_m), as the
+// trimmer fetches it.
+GridSource KnownRectangle(double width_m, double height_m) {
   mapping::MapLimits limits;
   limits.resolution_m = kResolutionM;
   limits.num_x_cells = 100;
   limits.num_y_cells = 100;
-  auto grid = std::make_unique<mapping::ProbabilityGrid>(limits);
+  auto grid = std::make_shared<mapping::ProbabilityGrid>(limits);
   for (int y = 0; y < static_cast<int>(height_m / kResolutionM + 0.5); ++y) {
     for (int x = 0; x < static_cast<int>(width_m / kResolutionM + 0.5); ++x) {
       grid->SetProbability(Eigen::Array2i(x, y), 0.2f);
     }
   }
-  return grid;
+  return [grid]() -> std::shared_ptr<const mapping::ProbabilityGrid> { return grid; };
 }
 
 OverlappingSubmapsTrimmerOptions2D Options(int fresh) {
@@ -34,9 +38,9 @@ OverlappingSubmapsTrimmerOptions2D Options(int fresh) {
 
 TEST(OverlappingSubmapsTrimmerTest, KeepsOnlyTheFreshestOfIdenticalSubmaps) {
   const auto grid = KnownRectangle(3.0, 3.0);
-  const std::vector<PlacedSubmap2D> submaps = {{0, common::Rigid2d::Identity(), grid.get()},
-                                               {3, common::Rigid2d::Identity(), grid.get()},
-                                               {7, common::Rigid2d::Identity(), grid.get()}};
+  const std::vector<PlacedSubmap2D> submaps = {{0, common::Rigid2d::Identity(), grid},
+                                               {3, common::Rigid2d::Identity(), grid},
+                                               {7, common::Rigid2d::Identity(), grid}};
   EXPECT_EQ(FindSubmapsToTrim(submaps, Options(1)), (std::vector<int>{0, 3}));
   EXPECT_EQ(FindSubmapsToTrim(submaps, Options(2)), (std::vector<int>{0}));
   EXPECT_TRUE(FindSubmapsToTrim(submaps, Options(3)).empty());
@@ -48,12 +52,12 @@ TEST(OverlappingSubmapsTrimmerTest, OldSubmapSurvivesWhereItAloneCoversEnoughAre
   const auto old_grid = KnownRectangle(3.0, 3.0);
   const auto new_wide = KnownRectangle(2.5, 3.0);
   const auto new_wider = KnownRectangle(2.9, 3.0);
-  EXPECT_TRUE(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), old_grid.get()},
-                                 {1, common::Rigid2d::Identity(), new_wide.get()}},
+  EXPECT_TRUE(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), old_grid},
+                                 {1, common::Rigid2d::Identity(), new_wide}},
                                 Options(1))
                   .empty());
-  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), old_grid.get()},
-                               {1, common::Rigid2d::Identity(), new_wider.get()}},
+  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), old_grid},
+                               {1, common::Rigid2d::Identity(), new_wider}},
                               Options(1)),
             (std::vector<int>{0}));
 }
@@ -66,12 +70,12 @@ TEST(OverlappingSubmapsTrimmerTest, CoverageIsComparedInTheMapFrame) {
   const common::Rigid2d turned =
       common::Rigid2d(Eigen::Vector2d(1.5, 1.5), M_PI / 2) *
       common::Rigid2d(Eigen::Vector2d(-1.5, -1.5), 0.0);
-  EXPECT_TRUE(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid.get()},
-                                 {1, far, grid.get()}},
+  EXPECT_TRUE(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid},
+                                 {1, far, grid}},
                                 Options(1))
                   .empty());
-  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid.get()},
-                               {1, turned, grid.get()}},
+  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid},
+                               {1, turned, grid}},
                               Options(1)),
             (std::vector<int>{0}));
 }
@@ -79,8 +83,8 @@ TEST(OverlappingSubmapsTrimmerTest, CoverageIsComparedInTheMapFrame) {
 TEST(OverlappingSubmapsTrimmerTest, UnknownGridIsTrimmed) {
   const auto empty = KnownRectangle(0.0, 0.0);
   const auto grid = KnownRectangle(3.0, 3.0);
-  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid.get()},
-                               {1, common::Rigid2d::Identity(), empty.get()}},
+  EXPECT_EQ(FindSubmapsToTrim({{0, common::Rigid2d::Identity(), grid},
+                               {1, common::Rigid2d::Identity(), empty}},
                               Options(1)),
             (std::vector<int>{1}));
 }

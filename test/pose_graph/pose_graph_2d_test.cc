@@ -49,6 +49,7 @@ struct RunResult {
   std::map<int, int> placed_new;
   std::map<int, common::Rigid2d> placed;
   std::vector<common::Rigid2d> T_map_submaps;
+  int compacted_submaps = 0;  // held deflated at the end
 };
 
 // Local SLAM with a known drift (testing/drifting_arc_drive.h).
@@ -77,6 +78,7 @@ RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Exe
     result.placed[p.submap] = p.T_map_submap;
   }
   result.T_map_submaps = graph.Snapshot()->T_map_submaps;
+  for (const auto& submap : graph.submaps()) result.compacted_submaps += submap && submap->compacted();
   result.stats = graph.stats();
   result.T_map_nodes = graph.Snapshot()->T_map_nodes;
   EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
@@ -104,6 +106,9 @@ TEST(PoseGraph2DTest, LocalOnlyKeepsLocalPosesAndSearchesNothing) {
   EXPECT_EQ(run.stats.loop_closure_searches, 0);
   EXPECT_EQ(run.stats.optimizations, 0);
   EXPECT_EQ(run.callbacks, 0);
+  // Submap 0 finished with node 19 and left local SLAM at node 20: held deflated since.
+  EXPECT_EQ(run.stats.finished_submaps, 1);
+  EXPECT_EQ(run.compacted_submaps, 1);
   ASSERT_EQ(run.T_map_nodes.size(), 25u);
   for (size_t i = 0; i < run.T_map_nodes.size(); ++i) {
     // The first node defines T_map_local = identity, so map poses are the local ones.
@@ -123,6 +128,8 @@ TEST(PoseGraph2DTest, LoopClosureReducesDrift) {
               num_nodes, run.stats.loop_closure_searches, run.stats.loop_closures_found,
               run.stats.optimizations, drift_m, optimized_m);
   EXPECT_GT(run.stats.finished_submaps, 5);
+  // Every finished submap but one local SLAM may still hold is deflated.
+  EXPECT_GE(run.compacted_submaps, run.stats.finished_submaps - 1);
   EXPECT_GT(run.stats.loop_closures_found, 0);
   EXPECT_GE(run.stats.optimizations, num_nodes / 10);
   EXPECT_GT(drift_m, 0.3);

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 #include <cstdint>
+#include <functional>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -45,6 +47,15 @@ using PlacedGrid = std::pair<common::Rigid2d, const ProbabilityGrid*>;
 // union. Each pixel samples the nearest cell of each grid at its centre and keeps the value
 // most confident about free or occupied (largest |p - 0.5|). Empty image if nothing is known.
 GridImage RenderMap(const std::vector<PlacedGrid>& grids, double resolution_m);
+
+// A grid fetched only while it is measured and drawn (a compacted submap inflates a copy per
+// fetch), and its T_map_grid as in PlacedGrid.
+struct GridSource {
+  common::Rigid2d T_map_grid;
+  std::function<std::shared_ptr<const ProbabilityGrid>()> fetch;
+};
+// The same image, holding one grid at a time: each is fetched twice (bounds, then pixels).
+GridImage RenderMap(const std::vector<GridSource>& grids, double resolution_m);
 
 // One grid in its own frame at its own resolution.
 GridImage RenderGrid(const ProbabilityGrid& grid);

@@ -2,7 +2,9 @@
 #define FUSEMAP_MAPPING_SUBMAP_2D_H_
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -46,8 +48,9 @@ struct SubmapState2D {
 
 // A local occupancy map built from consecutive range data. As in Cartographer, the grid is
 // expressed in the local SLAM frame (cell coordinates are local coordinates) and
-// T_local_submap is a pure translation to the origin at creation. Once finished, a submap is
-// never mutated again, so it may be shared read-only with other threads.
+// T_local_submap is a pure translation to the origin at creation. Once finished, a submap's
+// cells never change again, so it may be shared read-only with other threads; its storage may
+// still change (Compact()), which is why the grid is handed out by shared pointer.
 class Submap2D {
  public:
   // Starts an empty grid of 100 x 100 cells centred on `origin_in_local_m`.
@@ -59,7 +62,12 @@ class Submap2D {
   Submap2D& operator=(const Submap2D&) = delete;
 
   const common::Rigid2d& T_local_submap() const { return T_local_submap_; }
-  const ProbabilityGrid& grid() const { return grid_; }
+  // The grid. Of a compacted submap, a copy inflated by this call (a few milliseconds for a
+  // large one): keep the pointer while reading rather than calling again. An unfinished
+  // submap's grid changes with the next InsertRangeData().
+  std::shared_ptr<const ProbabilityGrid> grid() const;
+  // Memory the cells take as stored (deflated once compacted).
+  size_t grid_bytes() const;
   int num_range_data() const { return num_range_data_; }
   bool finished() const { return finished_; }
 
@@ -71,13 +79,27 @@ class Submap2D {
   // finite) to hold `range_data_in_local`.
   bool CanInsert(const sensor::RangeData& range_data_in_local) const;
 
+  // Finished submaps only: from now on the cells are held deflated (mapping/deflated_cells.h,
+  // lossless) and grid() inflates a copy per call. For submaps that are read rarely: global
+  // SLAM keeps every finished submap for the whole run but reads one only to build its
+  // precomputation grids, to trim and to draw the map. Any thread may call it while others
+  // call grid(); grids handed out before stay valid.
+  void Compact() const;
+  bool compacted() const;
+
   SubmapState2D ExportState() const;
 
  private:
   common::Rigid2d T_local_submap_;
-  ProbabilityGrid grid_;
   int num_range_data_ = 0;
   bool finished_ = false;
+  // Storage: `grid_` until Compact(), then `deflated_cells_` of a grid with `compact_limits_`.
+  // Guarded by the mutex because compaction changes the storage (never the cells) of a submap
+  // other threads read.
+  mutable std::mutex storage_mutex_;
+  mutable std::shared_ptr<ProbabilityGrid> grid_;
+  mutable MapLimits compact_limits_;
+  mutable std::vector<uint8_t> deflated_cells_;
 };
 
 // Cartographer's pair of active submaps: every range data goes into both; when the newer one

@@ -1,6 +1,8 @@
 #ifndef FUSEMAP_POSE_GRAPH_OVERLAPPING_SUBMAPS_TRIMMER_2D_H_
 #define FUSEMAP_POSE_GRAPH_OVERLAPPING_SUBMAPS_TRIMMER_2D_H_
 
+#include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -36,11 +38,13 @@ struct OverlappingSubmapsTrimmerOptions2D {
 OverlappingSubmapsTrimmerOptions2D ParseOverlappingSubmapsTrimmerOptions2D(
     common::ConfigReader& reader);
 
-// A finished submap as the trimmer sees it: its grid placed in the map frame.
+// A finished submap as the trimmer sees it: its grid placed in the map frame. The grid is
+// fetched when its turn comes and let go after (a compacted submap inflates a copy), so
+// trimming holds one inflated grid at a time.
 struct PlacedSubmap2D {
   int submap = 0;  // pose-graph index; a larger index is a newer submap
   common::Rigid2d T_map_grid;
-  const mapping::ProbabilityGrid* grid = nullptr;
+  std::function<std::shared_ptr<const mapping::ProbabilityGrid>()> grid;
 };
 
 // The submaps to drop, in increasing index order. Known cells of every grid are binned into
