@@ -56,7 +56,9 @@ void StampFilter::Accept(int channel, double rebased_s) {
 
 void StampFilter::Reset(int channel, double raw_s, std::string* reason) {
   const double jump_s = last_s_[channel] - (raw_s + offset_s_);
-  offset_s_ += jump_s + kTimeResetGapS;
+  // After the newest stamp of every channel, so that none of the new loop's messages is
+  // behind its channel's last one of the old loop.
+  offset_s_ += newest_s_ - (raw_s + offset_s_) + kTimeResetGapS;
   ++time_resets_;
   *reason = Format("stamp %.6f is %.1f s before the previous one: new time base, incoming stamps "
                    "now shifted by %+.6f s",
@@ -80,24 +82,9 @@ StampFilter::Decision StampFilter::Check(int channel, double raw_s) {
                              raw_s, resume_s_[channel]);
     return decision;
   }
-  Suspect& suspect = suspects_[channel];
-  Held held = Held::kNone;
   double held_stamp_s = 0.0;
   std::string held_reason, reset_reason;
-  if (suspect.active) {
-    suspect.active = false;
-    if (raw_s >= suspect.raw_s && raw_s - suspect.raw_s <= options_.max_jump_s) {
-      if (suspect.backwards) Reset(channel, suspect.raw_s, &reset_reason);
-      held = Held::kRelease;
-      held_stamp_s = suspect.raw_s + offset_s_;
-      Accept(channel, held_stamp_s);
-    } else {
-      held = Held::kDrop;
-      held_reason = Format("stamp %.6f was a jump the next message (%.6f) did not follow: dropped "
-                           "as an outlier",
-                           suspect.raw_s, raw_s);
-    }
-  }
+  const Held held = ResolveSuspect(channel, raw_s, &held_stamp_s, &held_reason, &reset_reason);
   decision = Judge(channel, raw_s);
   decision.held = held;
   decision.held_stamp_s = held_stamp_s;
@@ -107,6 +94,38 @@ StampFilter::Decision StampFilter::Check(int channel, double raw_s) {
     decision.reason = reset_reason;
   }
   return decision;
+}
+
+StampFilter::Held StampFilter::ResolveSuspect(int channel, double raw_s, double* held_stamp_s,
+                                              std::string* held_reason,
+                                              std::string* reset_reason) {
+  Suspect& suspect = suspects_[channel];
+  if (!suspect.active) return Held::kNone;
+  suspect.active = false;
+  const bool follows = raw_s >= suspect.raw_s && raw_s - suspect.raw_s <= options_.max_jump_s;
+  bool release = follows;
+  if (suspect.backwards && channel != reference_channel_) {
+    if (time_resets_ > suspect.time_resets) {
+      // The laser moved to the new time base meanwhile: the held message belongs to it.
+      const double rebased_s = suspect.raw_s + offset_s_;
+      release = rebased_s >= last_s_[channel] && rebased_s <= newest_s_ + options_.max_jump_s;
+    } else {
+      // Confirmed only by a message that is on the new clock too, not back on the old one.
+      release = follows && raw_s + offset_s_ < last_s_[channel] - options_.time_reset_threshold_s;
+      if (release) Reset(channel, suspect.raw_s, reset_reason);
+    }
+  } else if (release && suspect.backwards) {
+    Reset(channel, suspect.raw_s, reset_reason);
+  }
+  if (!release) {
+    *held_reason = Format("stamp %.6f was a jump the next message (%.6f) did not follow: dropped "
+                          "as an outlier",
+                          suspect.raw_s, raw_s);
+    return Held::kDrop;
+  }
+  *held_stamp_s = suspect.raw_s + offset_s_;
+  Accept(channel, *held_stamp_s);
+  return Held::kRelease;
 }
 
 StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
@@ -120,7 +139,7 @@ StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
       decision.time_reset = true;
       rebased_s = raw_s + offset_s_;
     } else {
-      suspects_[channel] = {true, raw_s, true};
+      suspects_[channel] = {true, raw_s, true, time_resets_};
       decision.verdict = Verdict::kHold;
       decision.kind = "timestamp jump";
       decision.reason = Format("stamp %.6f is %.0f s before the previous one, more than a log "
@@ -128,6 +147,17 @@ StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
                                raw_s, last_s - rebased_s);
       return decision;
     }
+  }
+  if (channel != reference_channel_ && options_.time_reset_threshold_s > 0.0 &&
+      rebased_s < last_s - options_.time_reset_threshold_s &&
+      last_s - rebased_s <= options_.max_time_reset_s) {
+    suspects_[channel] = {true, raw_s, true, time_resets_};
+    decision.verdict = Verdict::kHold;
+    decision.kind = "timestamp jump";
+    decision.reason = Format("stamp %.6f is %.1f s before the previous one: held until the laser "
+                             "or the next message confirms a new time base",
+                             raw_s, last_s - rebased_s);
+    return decision;
   }
   if (rebased_s < last_s) {
     decision.verdict = Verdict::kReject;
@@ -137,7 +167,7 @@ StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
     return decision;
   }
   if (newest_s_ != kNever && rebased_s > newest_s_ + options_.max_jump_s) {
-    suspects_[channel] = {true, raw_s, false};
+    suspects_[channel] = {true, raw_s, false, time_resets_};
     decision.verdict = Verdict::kHold;
     decision.kind = "timestamp jump";
     decision.reason = Format("stamp %.6f is %.1f s ahead of the newest accepted stamp %.6f: held "

@@ -95,6 +95,64 @@ TEST(StampFilterTest, PlausibleLaserLoopIsATimeReset) {
   EXPECT_NEAR(next.stamp_s, kT0 + 301.05, 1e-6);
 }
 
+// A looping player may replay odometry before the first scan of the new loop: it was dropped
+// as "going backwards" until the laser reset the time base. Held, and confirmed by the next
+// odometry message on the new clock, it is the time reset; the laser follows on the new base.
+TEST(StampFilterTest, OdometryOfTheNewLoopBeforeTheLaserIsKept) {
+  StampFilter filter = MakeFilter();
+  EXPECT_EQ(filter.Check(kLaser, kT0 + 300.0).verdict, Verdict::kAccept);
+  EXPECT_EQ(filter.Check(kOdometry, kT0 + 300.01).verdict, Verdict::kAccept);
+  EXPECT_EQ(filter.Check(kOdometry, kT0).verdict, Verdict::kHold);
+  const auto d = filter.Check(kOdometry, kT0 + 0.02);
+  EXPECT_EQ(d.verdict, Verdict::kAccept);
+  EXPECT_EQ(d.held, Held::kRelease);
+  EXPECT_TRUE(d.time_reset);
+  EXPECT_NEAR(d.held_stamp_s, kT0 + 300.01 + StampFilter::kTimeResetGapS, 1e-6);
+  EXPECT_NEAR(d.stamp_s, kT0 + 300.03 + StampFilter::kTimeResetGapS, 1e-6);
+  const auto scan = filter.Check(kLaser, kT0 + 0.03);
+  EXPECT_EQ(scan.verdict, Verdict::kAccept);
+  EXPECT_FALSE(scan.time_reset);
+  EXPECT_NEAR(scan.stamp_s, kT0 + 300.04 + StampFilter::kTimeResetGapS, 1e-6);
+  EXPECT_EQ(filter.time_resets(), 1);
+}
+
+// The same, when the laser's first scan of the new loop comes between the two odometry
+// messages: the laser resets, and the held odometry is released on the new base.
+TEST(StampFilterTest, OdometryHeldUntilTheLaserResetsIsReleased) {
+  StampFilter filter = MakeFilter();
+  EXPECT_EQ(filter.Check(kLaser, kT0 + 300.0).verdict, Verdict::kAccept);
+  EXPECT_EQ(filter.Check(kOdometry, kT0 + 300.01).verdict, Verdict::kAccept);
+  EXPECT_EQ(filter.Check(kOdometry, kT0).verdict, Verdict::kHold);
+  const auto scan = filter.Check(kLaser, kT0 + 0.01);
+  EXPECT_TRUE(scan.time_reset);
+  // After the newest stamp of any channel (the odometry's), not only the laser's.
+  EXPECT_NEAR(scan.stamp_s, kT0 + 300.01 + StampFilter::kTimeResetGapS, 1e-6);
+  const auto d = filter.Check(kOdometry, kT0 + 0.02);
+  EXPECT_EQ(d.verdict, Verdict::kAccept);
+  EXPECT_EQ(d.held, Held::kRelease);
+  EXPECT_FALSE(d.time_reset);
+  EXPECT_NEAR(d.held_stamp_s, kT0 + 300.0 + StampFilter::kTimeResetGapS, 1e-6);
+  EXPECT_NEAR(d.stamp_s, kT0 + 300.02 + StampFilter::kTimeResetGapS, 1e-6);
+  EXPECT_EQ(filter.time_resets(), 1);
+}
+
+// One stale odometry stamp 10 s back is no loop: the next message is back on the old clock,
+// so it alone is dropped and the time base stays.
+TEST(StampFilterTest, OneStaleOdometryStampIsNoTimeReset) {
+  StampFilter filter = MakeFilter();
+  int accepted = 0, dropped = 0;
+  for (int i = 0; i < 1000; ++i) {
+    const double stamp_s = kT0 + 0.02 * i - (i == 600 ? 10.0 : 0.0);
+    const auto d = filter.Check(kOdometry, stamp_s);
+    accepted += d.verdict == Verdict::kAccept;
+    dropped += d.held == Held::kDrop;
+    if (d.verdict == Verdict::kAccept) EXPECT_DOUBLE_EQ(d.stamp_s, stamp_s) << i;
+  }
+  EXPECT_EQ(accepted, 999);
+  EXPECT_EQ(dropped, 1);
+  EXPECT_EQ(filter.time_resets(), 0);
+}
+
 // One scan stamped 40 years back is not a loop: held, then dropped when the next scan is on
 // the old clock; confirmed, it is a time reset after all.
 TEST(StampFilterTest, HugeBackwardsJumpNeedsConfirmation) {

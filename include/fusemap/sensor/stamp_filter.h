@@ -20,7 +20,9 @@ struct StampFilterOptions {
   // moved (it follows the suspect) or the suspect was one outlier (it does not). 0 = never.
   double max_jump_s = 60.0;
   // A stamp on the reference channel (the laser) this much before that channel's previous one
-  // is a time reset (a looping log player): a new time base instead of a drop. 0 = never.
+  // is a time reset (a looping log player): a new time base instead of a drop. On another
+  // channel it is held until the laser resets or the channel's next message, also on the new
+  // clock, confirms it (a looping player may replay odometry before the first scan). 0 = never.
   double time_reset_threshold_s = 5.0;
   // A backwards jump larger than this is no log loop: held as a suspect like a jump ahead, and
   // a time reset only if the next message follows it.
@@ -33,9 +35,10 @@ struct StampFilterOptions {
 };
 
 // Decides, per message stamp, whether a sensor stream's message is in order. Channels are
-// small integers; channel `reference_channel` (the laser) alone may reset the time base. All
-// channels share one offset, added to every raw stamp after a reset, so that consumers see one
-// monotonic clock, as if the data had paused for kTimeResetGapS. A message stamped at or
+// small integers; channel `reference_channel` (the laser) resets the time base at once, the
+// others only once confirmed (time_reset_threshold_s). All channels share one offset, added to
+// every raw stamp after a reset, so that consumers see one monotonic clock, as if the data had
+// paused for kTimeResetGapS after the newest stamp of any channel. A message stamped at or
 // before its channel's resume point (SetResumePoint) is skipped until the channel's stream
 // has passed that point, so a replay restarted from its beginning does not map data twice.
 // One outlier costs one message: it is held, not accepted, so the messages after it are judged
@@ -72,8 +75,14 @@ class StampFilter {
   struct Suspect {
     bool active = false;
     double raw_s = 0.0;
-    bool backwards = false;  // a backwards jump beyond max_time_reset_s (reference channel)
+    // A backwards jump beyond max_time_reset_s (reference channel), or beyond
+    // time_reset_threshold_s (other channels: a log loop seen before the laser's).
+    bool backwards = false;
+    int64_t time_resets = 0;  // time_resets_ when it was held
   };
+  // The held suspect of `channel`, decided by the channel's next stamp `raw_s`.
+  Held ResolveSuspect(int channel, double raw_s, double* held_stamp_s, std::string* held_reason,
+                      std::string* reset_reason);
   // The time-reset and order checks of a raw stamp with no suspect pending.
   Decision Judge(int channel, double raw_s);
   void Accept(int channel, double rebased_s);
