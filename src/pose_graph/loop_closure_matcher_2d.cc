@@ -50,9 +50,10 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
 LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
                                            const ConstraintBuilderOptions2D& options)
     : submap_(std::move(submap)),
-      grid_(submap_->grid()),
       options_(options),
-      fast_matcher_(*grid_, options.fast_correlative_scan_matcher),
+      // The grid (inflated if the submap is compacted) is let go once the precomputation grids
+      // are built: they copy what they need.
+      fast_matcher_(*submap_->grid(), options.fast_correlative_scan_matcher),
       ceres_matcher_(options.ceres_scan_matcher) {}
 
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
@@ -68,9 +69,13 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
                           &T_grid_node)) {
     return std::nullopt;
   }
+  // Only matches that pass min_score are refined, a small fraction of the searches: they
+  // inflate the grid of a compacted submap (a millisecond for an office's), so that matchers
+  // held within matcher_memory_budget_mb need not keep a copy of it.
+  const std::shared_ptr<const mapping::ProbabilityGrid> grid = submap_->grid();
   common::Rigid2d refined;
   ceres::Solver::Summary summary;
-  ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, *grid_, &refined,
+  ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, *grid, &refined,
                        &summary);
   Constraint2D constraint;
   constraint.T_submap_node = T_grid_submap.inverse() * refined;

@@ -54,13 +54,11 @@ class LoopClosureMatcher2D {
   // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score; `score` receives the best score found.
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
                                     const sensor::PointCloud2d& cloud, double* score) const;
-  // Memory held by the precomputation grids and the grid Ceres refines against (once the
-  // submap is compacted, the only inflated copy of its cells).
-  size_t bytes() const { return fast_matcher_.precomputation_grids().bytes() + grid_->bytes(); }
+  // Memory held by the precomputation grids (the submap is counted by its owner).
+  size_t bytes() const { return fast_matcher_.precomputation_grids().bytes(); }
 
  private:
   std::shared_ptr<const mapping::Submap2D> submap_;
-  std::shared_ptr<const mapping::ProbabilityGrid> grid_;
   const ConstraintBuilderOptions2D options_;
   mapping::FastCorrelativeScanMatcher2D fast_matcher_;
   mapping::CeresScanMatcher2D ceres_matcher_;
