@@ -149,6 +149,7 @@ void Engine::Finish() {
 }
 
 void Engine::Process(SensorMessage& message) {
+  if (message.after_time_reset) session_->OnTimeReset();
   if (auto* scan = std::get_if<sensor::LaserScan>(&message.data)) {
     const auto pose = session_->AddScan(*scan);
     ++scans_processed_;

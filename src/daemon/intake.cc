@@ -59,6 +59,7 @@ bool Intake::Admit(InputChannel channel, AnyMessage message) {
   const sensor::StampFilter::Decision& decision = passed.decision;
   if (decision.time_reset) {
     ++time_resets_;
+    time_reset_pending_ = true;
     if (log_ != nullptr) log_->Report(names_[channel] + ": time reset", decision.reason);
   }
   if (passed.released) {
@@ -87,6 +88,8 @@ bool Intake::Enqueue(InputChannel channel, AnyMessage message) {
   if (auto* rgbd = std::get_if<RgbdMessage>(&message)) return rgbd_queue_.Push(std::move(*rgbd));
   SensorMessage& sensor_message = std::get<SensorMessage>(message);
   sensor_message.channel = channel;
+  sensor_message.after_time_reset = time_reset_pending_;
+  time_reset_pending_ = false;
   return sensor_queue_.Push(std::move(sensor_message));
 }
 

@@ -70,6 +70,14 @@ bool PoseExtrapolator2D::AddImu(const sensor::ImuData& imu) {
   return true;
 }
 
+void PoseExtrapolator2D::ForgetMotion() {
+  odometry_.clear();
+  imu_.clear();
+  if (poses_.size() > 1) poses_.erase(poses_.begin(), poses_.end() - 1);
+  linear_velocity_mps_.setZero();
+  angular_velocity_radps_ = 0.0;
+}
+
 void PoseExtrapolator2D::TrimQueues() {
   if (poses_.empty()) {
     // Without a pose nothing is extrapolated yet; keep only a short history.

@@ -142,12 +142,17 @@ TEST_F(IntakeTest, LaserJumpBackIsATimeResetAndLaterStampsAreRebased) {
   EXPECT_EQ(intake->time_resets(), 2);
 
   std::vector<double> stamps;
+  std::vector<bool> after_reset;
   while (intake->sensor_queue().size() > 0) {
     auto m = intake->sensor_queue().Pop();
     stamps.push_back(m->channel == kLidarChannel
                          ? std::get<sensor::LaserScan>(m->data).stamp_s
                          : std::get<sensor::OdometryData>(m->data).stamp_s);
+    after_reset.push_back(m->after_time_reset);
   }
+  // The first message on each new time base tells the SLAM thread, in order with the data.
+  EXPECT_EQ(after_reset,
+            std::vector<bool>({false, false, true, false, false, false, false, true}));
   const double gap = Intake::kTimeResetGapS;
   const std::vector<double> expected = {t0 + 9.9,         t0 + 10.0,       t0 + 10.0 + gap,
                                         t0 + 9.9 + gap,   t0 + 10.05 + gap, t0 + 10.1 + gap,

@@ -28,6 +28,28 @@ TEST(PoseExtrapolator2DTest, AppliesInterpolatedOdometryIncrementInTheRobotFrame
   EXPECT_NEAR(predicted.angle_rad(), common::kPi / 2, 1e-9);
 }
 
+// A looping log player restarts the odometry where the log began, 60 m from where it ended:
+// that jump is no motion. After ForgetMotion the next scan is predicted at the last pose, and
+// odometry counts again from the first sample after it.
+TEST(PoseExtrapolator2DTest, MotionAcrossATimeResetIsNotTakenFromOdometry) {
+  PoseExtrapolator2D extrapolator;
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(0.0, 60.0, 0.0, 0.0)));
+  extrapolator.AddPose(0.0, Rigid2d(10.0, 0.0, 0.0));
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(0.1, 60.1, 0.0, 0.0)));
+  extrapolator.AddPose(0.1, Rigid2d(10.1, 0.0, 0.0));
+  extrapolator.ForgetMotion();
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(1.1, 0.0, 0.0, 0.0)));
+  Rigid2d predicted = extrapolator.ExtrapolatePose(1.15);
+  EXPECT_NEAR(predicted.x(), 10.1, 1e-9);  // not 10.1 - 60.1, nor moved on at 1 m/s
+  EXPECT_NEAR(predicted.y(), 0.0, 1e-9);
+  extrapolator.AddPose(1.15, Rigid2d(10.1, 0.0, 0.0));
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(1.2, 0.0, 0.2, 0.0)));
+  ASSERT_TRUE(extrapolator.AddOdometry(Odom(1.25, 0.0, 0.3, 0.0)));
+  predicted = extrapolator.ExtrapolatePose(1.25);
+  EXPECT_NEAR(predicted.x(), 10.1, 1e-9);
+  EXPECT_NEAR(predicted.y(), 0.2, 1e-9);  // from the odometry at 1.15 (0.1) to 1.25 (0.3)
+}
+
 TEST(PoseExtrapolator2DTest, ConstantVelocityWithoutOdometry) {
   PoseExtrapolator2D extrapolator;
   extrapolator.AddPose(0.0, Rigid2d(0.0, 0.0, 0.0));

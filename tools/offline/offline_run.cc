@@ -179,6 +179,7 @@ int Run(const Args& args) {
     }
     auto passed = gate.Offer(channel, message);
     const sensor::StampFilter::Decision& decision = passed.decision;
+    if (decision.time_reset) session.OnTimeReset();
     if (passed.released) {
       apply(*passed.released);
     } else if (decision.held == sensor::StampFilter::Held::kDrop) {

@@ -32,6 +32,9 @@ struct SensorMessage {
   InputChannel channel = kLidarChannel;
   std::chrono::steady_clock::time_point received;
   std::variant<sensor::LaserScan, sensor::OdometryData, sensor::ImuData> data;
+  // The first message queued on a new time base (sensor::StampFilter's time reset): the SLAM
+  // thread calls SlamSession::OnTimeReset before it, in order with the data.
+  bool after_time_reset = false;
 };
 
 // An RGB-D frame as the handler thread queues it: checked, with its images still compressed
@@ -113,6 +116,8 @@ class Intake {
   std::array<ChannelCounters, kNumInputChannels> counters_;
   sensor::StampGate<AnyMessage> stamp_gate_;  // handler thread only
   std::atomic<int64_t> time_resets_{0};
+  // A time reset the next queued sensor message carries (handler thread only).
+  bool time_reset_pending_ = false;
   bool decode_rgbd_ = false;
   BoundedQueue<SensorMessage> sensor_queue_;
   BoundedQueue<RgbdMessage> rgbd_queue_;

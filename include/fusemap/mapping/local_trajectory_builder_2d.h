@@ -110,6 +110,10 @@ class LocalTrajectoryBuilder2D {
 
   void AddOdometry(const sensor::OdometryData& odometry);
   void AddImu(const sensor::ImuData& imu);
+  // The stream's time base was reset (sensor::StampFilter): odometry before and after it need
+  // not be continuous (a looping log player restarts it), so motion across it is not taken
+  // from odometry (PoseExtrapolator2D::ForgetMotion).
+  void OnTimeReset() { extrapolator_.ForgetMotion(); }
   // Empty if the scan was unusable (too few returns, older than the previous scan).
   std::optional<MatchingResult> AddScan(const sensor::LaserScan& scan);
 

@@ -41,6 +41,11 @@ class PoseExtrapolator2D {
   // Returns false (and ignores the sample) if it is older than the last odometry sample.
   bool AddOdometry(const sensor::OdometryData& odometry);
   bool AddImu(const sensor::ImuData& imu);
+  // The motion since the last pose is unknown (the time base was reset: a log player looped,
+  // the robot may have been carried): odometry and IMU samples so far are dropped, since the
+  // next ones need not continue them, and the velocity is zeroed. The next scan is predicted
+  // at the last pose, and odometry counts again from the first sample after this.
+  void ForgetMotion();
 
   bool HasPose() const { return !poses_.empty(); }
   double last_pose_stamp_s() const { return poses_.back().stamp_s; }

@@ -44,6 +44,8 @@ class MapBuilder2D {
 
   void AddOdometry(const sensor::OdometryData& odometry) { local_.AddOdometry(odometry); }
   void AddImu(const sensor::ImuData& imu) { local_.AddImu(imu); }
+  // See LocalTrajectoryBuilder2D::OnTimeReset; before the first message on the new time base.
+  void OnTimeReset() { local_.OnTimeReset(); }
   struct ScanResult {
     common::Rigid2d T_map_tracking;  // the global estimate at the scan
     common::Rigid2d T_local_tracking;

@@ -70,6 +70,8 @@ class SlamSession {
   // False (and nothing recorded) for odometry older than the record's newest sample.
   bool AddOdometry(const sensor::OdometryData& odometry);
   void AddImu(const sensor::ImuData& imu);
+  // The input's time base was reset (sensor::StampFilter); before the first message on it.
+  void OnTimeReset() { builder_->OnTimeReset(); }
   // To the session's own cloud and visual stages; each ignored without one or with its sink.
   void AddRgbdFrame(const sensor::RgbdFrame& frame);
   // End of input: the visual stage's last decisions (after the executor's pending searches),
