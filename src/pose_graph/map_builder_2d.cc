@@ -115,7 +115,7 @@ common::Rigid2d OdometryAt(const std::vector<sensor::OdometryData>& odometry, do
 
 std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
     const std::vector<MapBuilder2D::TimedPose2d>& nodes,
-    const std::vector<sensor::OdometryData>& odometry) {
+    const std::vector<sensor::OdometryData>& odometry, const std::vector<double>& breaks_s) {
   if (odometry.empty() || nodes.empty()) return nodes;
   // Each node's pose as predicted from its odometry: T_map_node * T_odom_node^-1 maps odometry
   // poses into the map frame as that node sees them.
@@ -139,10 +139,18 @@ std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
       // the interval: blend the two nodes' predictions by time fraction.
       const auto& a = nodes[next - 1];
       const auto& b = nodes[next];
-      const double span = b.stamp_s - a.stamp_s;
-      const double fraction = span > 0 ? (sample.stamp_s - a.stamp_s) / span : 0.0;
-      pose = common::Interpolate(T_map_odom[next - 1] * sample.pose,
-                                 T_map_odom[next] * sample.pose, fraction);
+      const auto reset = std::find_if(breaks_s.begin(), breaks_s.end(), [&](double t) {
+        return t > a.stamp_s && t <= b.stamp_s;
+      });
+      if (reset != breaks_s.end()) {
+        pose = sample.stamp_s < *reset ? T_map_odom[next - 1] * sample.pose
+                                       : T_map_odom[next] * sample.pose;
+      } else {
+        const double span = b.stamp_s - a.stamp_s;
+        const double fraction = span > 0 ? (sample.stamp_s - a.stamp_s) / span : 0.0;
+        pose = common::Interpolate(T_map_odom[next - 1] * sample.pose,
+                                   T_map_odom[next] * sample.pose, fraction);
+      }
     }
     dense.push_back({sample.stamp_s, pose});
   }

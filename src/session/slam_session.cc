@@ -77,6 +77,8 @@ std::optional<pose_graph::MapBuilder2D::ScanResult> SlamSession::AddScan(
 bool SlamSession::AddOdometry(const sensor::OdometryData& odometry) {
   // The densified trajectory needs a time-ordered record.
   if (odometry.stamp_s < last_odometry_stamp_s()) return false;
+  if (time_reset_pending_) odometry_breaks_s_.push_back(odometry.stamp_s);
+  time_reset_pending_ = false;
   odometry_.push_back(odometry);
   builder_->AddOdometry(odometry);
   return true;
@@ -136,6 +138,7 @@ bool SlamSession::WriteOutputs(const std::string& dir, RunOutputsReport* report,
   RunOutputs run;
   run.builder = builder_.get();
   run.odometry = &odometry_;
+  run.odometry_breaks_s = &odometry_breaks_s_;
   run.map_resolution_m = config_.map_builder.local_slam.submaps.resolution_m;
   run.cloud_mapper = cloud_stage_ ? &cloud_stage_->mapper() : nullptr;
   run.archive = archive_.get();

@@ -171,6 +171,24 @@ TEST(DensifyWithOdometryTest, BlendsTheCorrectionsOfBothNeighbouringNodes) {
   }
 }
 
+// A looping log restarts its odometry at 1.5 s, 60 m away: a sample on either side of that
+// break follows only the node on its own side, never the increment across the jump.
+TEST(DensifyWithOdometryTest, TakesNoIncrementAcrossATimeReset) {
+  const std::vector<MapBuilder2D::TimedPose2d> nodes = {{1.0, common::Rigid2d(5.0, 0.0, 0.0)},
+                                                        {2.0, common::Rigid2d(5.5, 0.0, 0.0)}};
+  std::vector<sensor::OdometryData> odometry = {{1.0, common::Rigid2d(60.0, 0.0, 0.0)},
+                                                {1.25, common::Rigid2d(60.1, 0.0, 0.0)},
+                                                {1.5, common::Rigid2d(0.0, 0.0, 0.0)},
+                                                {2.0, common::Rigid2d(0.2, 0.0, 0.0)}};
+  const auto dense = DensifyWithOdometry(nodes, odometry, {1.5});
+  ASSERT_EQ(dense.size(), 4u);
+  EXPECT_NEAR(dense[1].pose.x(), 5.1, 1e-9);  // after the node at 1 s, on the old odometry
+  EXPECT_NEAR(dense[2].pose.x(), 5.3, 1e-9);  // before the node at 2 s, on the new odometry
+  EXPECT_NEAR(dense[3].pose.x(), 5.5, 1e-9);
+  // Without the break the blend mixes the two odometry frames: tens of metres off.
+  EXPECT_GT(std::abs(DensifyWithOdometry(nodes, odometry)[2].pose.x() - 5.3), 10.0);
+}
+
 TEST(DensifyWithOdometryTest, PassesThroughNodesWithoutJumps) {
   // Rotational corrections on both nodes: the dense trajectory must meet each node at its stamp
   // and move smoothly in between (composing onto the nearest node alone jumped at t = 1.5).

@@ -253,7 +253,8 @@ int Run(const Args& args) {
     }
   }
   const auto dense = pose_graph::DensifyWithOdometry(
-      nodes, pose_graph::ApplyOdometryCalibration(calibration, odometry));
+      nodes, pose_graph::ApplyOdometryCalibration(calibration, odometry),
+      session.odometry_breaks_s());
   if (!calibration.IsIdentity() &&
       !io::WriteTumTrajectoryFile(out + "trajectory.tum", session::ToTrajectory(dense), &error)) {
     std::fprintf(stderr, "fusemap_offline: %s\n", error.c_str());

@@ -91,9 +91,12 @@ class MapBuilder2D {
 // the two predictions blended by time fraction, so the pose is continuous and equals each node
 // at its stamp. Samples before the first or after the last node use the nearest node only.
 // Repeated odometry stamps keep the first sample. Without odometry the nodes are returned.
+// `breaks_s`: stamps of the first odometry samples after time resets, where the odometry
+// restarts (a looping log): no increment is taken across one, so between two nodes on either
+// side each sample follows the node on its own side.
 std::vector<MapBuilder2D::TimedPose2d> DensifyWithOdometry(
     const std::vector<MapBuilder2D::TimedPose2d>& nodes,
-    const std::vector<sensor::OdometryData>& odometry);
+    const std::vector<sensor::OdometryData>& odometry, const std::vector<double>& breaks_s = {});
 
 }  // namespace pose_graph
 }  // namespace fusemap

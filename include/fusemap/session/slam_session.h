@@ -71,7 +71,12 @@ class SlamSession {
   bool AddOdometry(const sensor::OdometryData& odometry);
   void AddImu(const sensor::ImuData& imu);
   // The input's time base was reset (sensor::StampFilter); before the first message on it.
-  void OnTimeReset() { builder_->OnTimeReset(); }
+  // Its stamp is recorded with the next odometry sample (odometry_breaks_s), so that the
+  // densified trajectory takes no odometry increment across it; not kept across --resume.
+  void OnTimeReset() {
+    builder_->OnTimeReset();
+    time_reset_pending_ = true;
+  }
   // To the session's own cloud and visual stages; each ignored without one or with its sink.
   void AddRgbdFrame(const sensor::RgbdFrame& frame);
   // End of input: the visual stage's last decisions (after the executor's pending searches),
@@ -89,6 +94,7 @@ class SlamSession {
   const pose_graph::MapBuilder2D& builder() const { return *builder_; }
   // The odometry accepted since the last ArchiveSettled (all of it without an archive).
   const std::vector<sensor::OdometryData>& odometry() const { return odometry_; }
+  const std::vector<double>& odometry_breaks_s() const { return odometry_breaks_s_; }
   const io::TrajectoryArchive* archive() const { return archive_.get(); }
   // The newest odometry stamp recorded or archived; -inf before any.
   double last_odometry_stamp_s() const;
@@ -108,6 +114,8 @@ class SlamSession {
   common::Executor* const executor_;
   std::unique_ptr<pose_graph::MapBuilder2D> builder_;
   std::vector<sensor::OdometryData> odometry_;
+  std::vector<double> odometry_breaks_s_;  // the first odometry stamp after each time reset
+  bool time_reset_pending_ = false;
   std::unique_ptr<io::TrajectoryArchive> archive_;
   std::unique_ptr<CloudStage> cloud_stage_;
   CloudSink cloud_sink_;
