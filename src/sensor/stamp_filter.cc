@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <utility>
 
 namespace fusemap {
 namespace sensor {
@@ -128,6 +129,16 @@ StampFilter::Held StampFilter::ResolveSuspect(int channel, double raw_s, double*
   return Held::kRelease;
 }
 
+StampFilter::Decision StampFilter::Hold(int channel, double raw_s, bool backwards,
+                                        std::string reason) {
+  suspects_[channel] = {true, raw_s, backwards, time_resets_};
+  Decision decision;
+  decision.verdict = Verdict::kHold;
+  decision.kind = "timestamp jump";
+  decision.reason = std::move(reason);
+  return decision;
+}
+
 StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
   Decision decision;
   double rebased_s = raw_s + offset_s_;
@@ -139,25 +150,19 @@ StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
       decision.time_reset = true;
       rebased_s = raw_s + offset_s_;
     } else {
-      suspects_[channel] = {true, raw_s, true, time_resets_};
-      decision.verdict = Verdict::kHold;
-      decision.kind = "timestamp jump";
-      decision.reason = Format("stamp %.6f is %.0f s before the previous one, more than a log "
-                               "loop: held until the next message confirms a new time base",
-                               raw_s, last_s - rebased_s);
-      return decision;
+      return Hold(channel, raw_s, true,
+                  Format("stamp %.6f is %.0f s before the previous one, more than a log loop: "
+                         "held until the next message confirms a new time base",
+                         raw_s, last_s - rebased_s));
     }
   }
   if (channel != reference_channel_ && options_.time_reset_threshold_s > 0.0 &&
       rebased_s < last_s - options_.time_reset_threshold_s &&
       last_s - rebased_s <= options_.max_time_reset_s) {
-    suspects_[channel] = {true, raw_s, true, time_resets_};
-    decision.verdict = Verdict::kHold;
-    decision.kind = "timestamp jump";
-    decision.reason = Format("stamp %.6f is %.1f s before the previous one: held until the laser "
-                             "or the next message confirms a new time base",
-                             raw_s, last_s - rebased_s);
-    return decision;
+    return Hold(channel, raw_s, true,
+                Format("stamp %.6f is %.1f s before the previous one: held until the laser or the "
+                       "next message confirms a new time base",
+                       raw_s, last_s - rebased_s));
   }
   if (rebased_s < last_s) {
     decision.verdict = Verdict::kReject;
@@ -167,13 +172,10 @@ StampFilter::Decision StampFilter::Judge(int channel, double raw_s) {
     return decision;
   }
   if (newest_s_ != kNever && rebased_s > newest_s_ + options_.max_jump_s) {
-    suspects_[channel] = {true, raw_s, false, time_resets_};
-    decision.verdict = Verdict::kHold;
-    decision.kind = "timestamp jump";
-    decision.reason = Format("stamp %.6f is %.1f s ahead of the newest accepted stamp %.6f: held "
-                             "until the next message confirms the new time base",
-                             rebased_s, rebased_s - newest_s_, newest_s_);
-    return decision;
+    return Hold(channel, raw_s, false,
+                Format("stamp %.6f is %.1f s ahead of the newest accepted stamp %.6f: held until "
+                       "the next message confirms the new time base",
+                       rebased_s, rebased_s - newest_s_, newest_s_));
   }
   Accept(channel, rebased_s);
   decision.stamp_s = rebased_s;

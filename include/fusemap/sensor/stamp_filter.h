@@ -83,6 +83,8 @@ class StampFilter {
   // The held suspect of `channel`, decided by the channel's next stamp `raw_s`.
   Held ResolveSuspect(int channel, double raw_s, double* held_stamp_s, std::string* held_reason,
                       std::string* reset_reason);
+  // Holds the message at `raw_s` as the channel's suspect.
+  Decision Hold(int channel, double raw_s, bool backwards, std::string reason);
   // The time-reset and order checks of a raw stamp with no suspect pending.
   Decision Judge(int channel, double raw_s);
   void Accept(int channel, double rebased_s);
