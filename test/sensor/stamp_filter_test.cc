@@ -95,14 +95,21 @@ TEST(StampFilterTest, PlausibleLaserLoopIsATimeReset) {
   EXPECT_NEAR(next.stamp_s, kT0 + 301.05, 1e-6);
 }
 
-// A looping player may replay odometry before the first scan of the new loop: it was dropped
-// as "going backwards" until the laser reset the time base. Held, and confirmed by the next
-// odometry message on the new clock, it is the time reset; the laser follows on the new base.
-TEST(StampFilterTest, OdometryOfTheNewLoopBeforeTheLaserIsKept) {
+// The end of one log loop (a scan at +300 s, odometry at +300.01 s), then the first odometry
+// of the next loop, back at +0 s: held.
+StampFilter FilterHoldingTheNewLoopsFirstOdometry() {
   StampFilter filter = MakeFilter();
   EXPECT_EQ(filter.Check(kLaser, kT0 + 300.0).verdict, Verdict::kAccept);
   EXPECT_EQ(filter.Check(kOdometry, kT0 + 300.01).verdict, Verdict::kAccept);
   EXPECT_EQ(filter.Check(kOdometry, kT0).verdict, Verdict::kHold);
+  return filter;
+}
+
+// A looping player may replay odometry before the first scan of the new loop: it was dropped
+// as "going backwards" until the laser reset the time base. Held, and confirmed by the next
+// odometry message on the new clock, it is the time reset; the laser follows on the new base.
+TEST(StampFilterTest, OdometryOfTheNewLoopBeforeTheLaserIsKept) {
+  StampFilter filter = FilterHoldingTheNewLoopsFirstOdometry();
   const auto d = filter.Check(kOdometry, kT0 + 0.02);
   EXPECT_EQ(d.verdict, Verdict::kAccept);
   EXPECT_EQ(d.held, Held::kRelease);
@@ -119,10 +126,7 @@ TEST(StampFilterTest, OdometryOfTheNewLoopBeforeTheLaserIsKept) {
 // The same, when the laser's first scan of the new loop comes between the two odometry
 // messages: the laser resets, and the held odometry is released on the new base.
 TEST(StampFilterTest, OdometryHeldUntilTheLaserResetsIsReleased) {
-  StampFilter filter = MakeFilter();
-  EXPECT_EQ(filter.Check(kLaser, kT0 + 300.0).verdict, Verdict::kAccept);
-  EXPECT_EQ(filter.Check(kOdometry, kT0 + 300.01).verdict, Verdict::kAccept);
-  EXPECT_EQ(filter.Check(kOdometry, kT0).verdict, Verdict::kHold);
+  StampFilter filter = FilterHoldingTheNewLoopsFirstOdometry();
   const auto scan = filter.Check(kLaser, kT0 + 0.01);
   EXPECT_TRUE(scan.time_reset);
   // After the newest stamp of any channel (the odometry's), not only the laser's.
