@@ -23,6 +23,8 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
                  "must be > 0");
   check->Require(loop_closure_rotation_weight > 0.0, "loop_closure_rotation_weight",
                  "must be > 0");
+  check->Require(min_translation_information_ratio >= 0.0 && min_translation_information_ratio <= 1.0,
+                 "min_translation_information_ratio", "must be in [0, 1]");
   check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
 }
@@ -37,6 +39,7 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   reader.Get("max_constraint_distance_m", &options.max_constraint_distance_m);
   reader.Get("loop_closure_translation_weight", &options.loop_closure_translation_weight);
   reader.Get("loop_closure_rotation_weight", &options.loop_closure_rotation_weight);
+  reader.Get("min_translation_information_ratio", &options.min_translation_information_ratio);
   options.fast_correlative_scan_matcher = mapping::ParseFastCorrelativeScanMatcherOptions2D(
       reader.Child("fast_correlative_scan_matcher"));
   if (reader.Has("ceres_scan_matcher")) {
@@ -58,8 +61,11 @@ LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap
 
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
     const common::Rigid2d& T_submap_node_estimate, const sensor::PointCloud2d& cloud,
-    double* score) const {
+    double* score, MatchRefusal* refusal) const {
   *score = 0.0;
+  MatchRefusal ignored;
+  if (refusal == nullptr) refusal = &ignored;
+  *refusal = MatchRefusal::kLowScore;
   if (cloud.empty()) return std::nullopt;
   // Submap grids live in the local SLAM frame; T_local_submap takes submap to grid coordinates.
   const common::Rigid2d T_grid_submap = submap_->T_local_submap();
@@ -67,6 +73,14 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   common::Rigid2d T_grid_node;
   if (!fast_matcher_.Match(initial, cloud, options_.fast_correlative_scan_matcher.min_score, score,
                           &T_grid_node)) {
+    return std::nullopt;
+  }
+  // Where the scan holds the match in one direction only (a corridor of plain walls), the
+  // score was as high anywhere along the other: where the match landed is no measurement.
+  if (options_.min_translation_information_ratio > 0.0 &&
+      mapping::ComputeScanInformation2D(cloud).TranslationRatio() <
+          options_.min_translation_information_ratio) {
+    *refusal = MatchRefusal::kDegenerate;
     return std::nullopt;
   }
   // Only matches that pass min_score are refined, a small fraction of the searches: they
@@ -77,6 +91,7 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   ceres::Solver::Summary summary;
   ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, *grid, &refined,
                        &summary);
+  *refusal = MatchRefusal::kNone;
   Constraint2D constraint;
   constraint.T_submap_node = T_grid_submap.inverse() * refined;
   constraint.translation_weight = options_.loop_closure_translation_weight;

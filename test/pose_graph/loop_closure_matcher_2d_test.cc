@@ -67,9 +67,11 @@ TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
   const common::Rigid2d estimate(T_submap_node.translation() + Eigen::Vector2d(0.5, 0.0),
                                  T_submap_node.angle_rad() + common::DegToRad(5.0));
   double score = 0.0;
-  const auto constraint =
-      matcher.Match(estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score);
+  MatchRefusal refusal = MatchRefusal::kLowScore;
+  const auto constraint = matcher.Match(
+      estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score, &refusal);
   ASSERT_TRUE(constraint.has_value()) << "score " << score;
+  EXPECT_EQ(refusal, MatchRefusal::kNone);
   std::printf("score %.3f, error %.4f m %.4f deg\n", score,
               (constraint->T_submap_node.translation() - T_submap_node.translation()).norm(),
               common::NormalizeAngle(constraint->T_submap_node.angle_rad() -
@@ -97,6 +99,49 @@ TEST(LoopClosureMatcher2DTest, RejectsScanFromDifferentRoom) {
   std::printf("different room: score %.3f\n", score);
   EXPECT_FALSE(constraint.has_value());
   EXPECT_LT(score, options.fast_correlative_scan_matcher.min_score);
+}
+
+// A 2 m wide corridor of plain walls, 60 m long along x: a scan in it (12 m of range) sees two
+// parallel lines, which fit as well anywhere along it.
+std::vector<Segment> Corridor() {
+  return {{{-30.0, -1.0}, {30.0, -1.0}}, {{-30.0, 1.0}, {30.0, 1.0}}};
+}
+
+std::shared_ptr<const mapping::Submap2D> BuildFinishedCorridorSubmap() {
+  mapping::SubmapsOptions options;
+  options.num_range_data = 10;
+  mapping::ActiveSubmaps2D active(options);
+  std::shared_ptr<const mapping::Submap2D> front;
+  for (int i = 0; i < 20; ++i) {
+    const common::Rigid2d pose(0.2 * i, 0.0, 0.0);
+    const sensor::RangeData data = SimulateRangeData(Corridor(), pose);
+    front = active.InsertRangeData(sensor::TransformRangeData(data, pose)).front();
+  }
+  return front;
+}
+
+TEST(LoopClosureMatcher2DTest, RefusesAMatchThatCanSlideAlongACorridor) {
+  const auto submap = BuildFinishedCorridorSubmap();
+  ASSERT_TRUE(submap->finished());
+  const common::Rigid2d T_world_node(2.0, 0.1, 0.05);
+  const common::Rigid2d estimate =
+      submap->T_local_submap().inverse() *
+      common::Rigid2d(T_world_node.translation() + Eigen::Vector2d(0.5, 0.0), 0.05);
+  const sensor::PointCloud2d cloud = LoopClosureCloud(SimulateRangeData(Corridor(), T_world_node));
+
+  ConstraintBuilderOptions2D accept_all;
+  accept_all.min_translation_information_ratio = 0.0;
+  double score = 0.0;
+  MatchRefusal refusal = MatchRefusal::kLowScore;
+  // The match scores well: only the corridor's axis is unknown.
+  EXPECT_TRUE(LoopClosureMatcher2D(submap, accept_all).Match(estimate, cloud, &score, &refusal));
+  EXPECT_GT(score, accept_all.fast_correlative_scan_matcher.min_score);
+  EXPECT_EQ(refusal, MatchRefusal::kNone);
+
+  const ConstraintBuilderOptions2D defaults;
+  EXPECT_GT(defaults.min_translation_information_ratio, 0.0);
+  EXPECT_FALSE(LoopClosureMatcher2D(submap, defaults).Match(estimate, cloud, &score, &refusal));
+  EXPECT_EQ(refusal, MatchRefusal::kDegenerate);
 }
 
 TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {

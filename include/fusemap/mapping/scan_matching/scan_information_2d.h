@@ -1,0 +1,43 @@
+#ifndef FUSEMAP_MAPPING_SCAN_MATCHING_SCAN_INFORMATION_2D_H_
+#define FUSEMAP_MAPPING_SCAN_MATCHING_SCAN_INFORMATION_2D_H_
+
+#include <Eigen/Core>
+
+#include "fusemap/sensor/sensor_types.h"
+
+namespace fusemap {
+namespace mapping {
+
+// How firmly a scan's own geometry can pin down a match of it, whatever map it is matched
+// against: each point lying on a line of its neighbours (a wall) is held across that line, not
+// along it, as in point-to-line ICP, and the Gauss-Newton information over the pose is the sum
+// (Gelfand et al. 2003 for ICP; Zhang, Kaess & Singh 2016 call the smallest eigenvalue the
+// problem's degeneracy). A scan of a corridor whose walls are two parallel lines holds the
+// match across the corridor only: matched anywhere along it, it fits as well. Taken from the
+// scan rather than from the map where the match put it, because a match slid to the wrong place
+// lands its points on structure (a corner) the scan never saw.
+struct ScanInformation2D {
+  // Over [x_m, y_m, angle_rad] of the scan's pose, mean per point (unitless in translation).
+  Eigen::Matrix3d information = Eigen::Matrix3d::Zero();
+  // Eigenvalues of the translation information with the angle left free (the Schur complement
+  // of the angle block); weakest_direction is a unit vector in the scan's frame.
+  double weakest_translation = 0.0;
+  double strongest_translation = 0.0;
+  Eigen::Vector2d weakest_direction = Eigen::Vector2d::UnitX();
+  // Points whose neighbours lie on a line, i.e. that contribute.
+  int points_on_lines = 0;
+
+  // weakest / strongest translation information, in [0, 1]: ~0 when a match can slide along one
+  // direction (a corridor), up to 1 when walls hold it equally every way; 0 without any line.
+  double TranslationRatio() const;
+};
+
+// `cloud` in the frame the pose rotates about (the tracking frame). A point's line is fitted to
+// it and its 4 nearest neighbours within 2 m (sparse, voxel-filtered clouds included) and counts
+// when they spread along one direction at least 10 times more than across it.
+ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud);
+
+}  // namespace mapping
+}  // namespace fusemap
+
+#endif  // FUSEMAP_MAPPING_SCAN_MATCHING_SCAN_INFORMATION_2D_H_

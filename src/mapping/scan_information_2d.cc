@@ -1,0 +1,80 @@
+#include "fusemap/mapping/scan_matching/scan_information_2d.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+constexpr int kNeighbours = 4;
+constexpr double kMaxNeighbourDistanceM = 2.0;
+// Spread along the line against across it, as a ratio of variances (a factor ~3.2 in metres).
+constexpr double kMinLineVarianceRatio = 10.0;
+
+}  // namespace
+
+double ScanInformation2D::TranslationRatio() const {
+  if (!(strongest_translation > 0.0)) return 0.0;
+  return weakest_translation / strongest_translation;
+}
+
+ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud) {
+  ScanInformation2D result;
+  const size_t n = cloud.size();
+  if (n < 3) return result;
+  std::vector<std::pair<double, size_t>> by_distance;
+  by_distance.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    const Eigen::Vector2d p = cloud[i].cast<double>();
+    // Brute force: loop-closure clouds hold a few hundred points, and only matches that passed
+    // the score are asked about.
+    by_distance.clear();
+    for (size_t j = 0; j < n; ++j) {
+      if (j == i) continue;
+      const double d2 = (cloud[j].cast<double>() - p).squaredNorm();
+      if (d2 <= kMaxNeighbourDistanceM * kMaxNeighbourDistanceM) by_distance.emplace_back(d2, j);
+    }
+    if (by_distance.size() < 2) continue;
+    const size_t k = std::min<size_t>(kNeighbours, by_distance.size());
+    std::partial_sort(by_distance.begin(), by_distance.begin() + k, by_distance.end());
+    Eigen::Vector2d mean = p;
+    for (size_t m = 0; m < k; ++m) mean += cloud[by_distance[m].second].cast<double>();
+    mean /= static_cast<double>(k + 1);
+    Eigen::Matrix2d covariance = (p - mean) * (p - mean).transpose();
+    for (size_t m = 0; m < k; ++m) {
+      const Eigen::Vector2d d = cloud[by_distance[m].second].cast<double>() - mean;
+      covariance += d * d.transpose();
+    }
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> line(covariance);
+    if (!(line.eigenvalues()(1) > kMinLineVarianceRatio * line.eigenvalues()(0))) continue;
+    const Eigen::Vector2d normal = line.eigenvectors().col(0);
+    // Point-to-line residual normal . (R p + t): its gradient over [x, y, angle] at the pose.
+    Eigen::Vector3d J;
+    J << normal, normal.dot(Eigen::Vector2d(-p.y(), p.x()));
+    result.information += J * J.transpose();
+    ++result.points_on_lines;
+  }
+  result.information /= static_cast<double>(n);
+  if (result.points_on_lines == 0 || !result.information.allFinite()) {
+    result.information.setZero();
+    return result;
+  }
+  const Eigen::Matrix2d H_tt = result.information.topLeftCorner<2, 2>();
+  const Eigen::Vector2d H_ta = result.information.topRightCorner<2, 1>();
+  const double H_aa = result.information(2, 2);
+  // An angle the points do not hold (every line through the origin) leaves translation as is.
+  const Eigen::Matrix2d marginal =
+      H_aa > 1e-12 ? Eigen::Matrix2d(H_tt - H_ta * H_ta.transpose() / H_aa) : H_tt;
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eigen(marginal);
+  // Ascending eigenvalues; rounding can leave the smallest a hair below zero.
+  result.weakest_translation = std::max(0.0, eigen.eigenvalues()(0));
+  result.strongest_translation = std::max(0.0, eigen.eigenvalues()(1));
+  result.weakest_direction = eigen.eigenvectors().col(0).normalized();
+  return result;
+}
+
+}  // namespace mapping
+}  // namespace fusemap

@@ -1,0 +1,82 @@
+#include "fusemap/mapping/scan_matching/scan_information_2d.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "fusemap/sensor/voxel_filter.h"
+#include "testing/wall_grid.h"
+
+namespace fusemap {
+namespace mapping {
+namespace {
+
+using test_world::Segment;
+
+// A 2 m wide corridor, 40 m long along x.
+std::vector<Segment> CorridorWalls() {
+  return {{Eigen::Vector2d(-20.0, -1.0), Eigen::Vector2d(20.0, -1.0)},
+          {Eigen::Vector2d(-20.0, 1.0), Eigen::Vector2d(20.0, 1.0)}};
+}
+
+// As loop closure sees a scan: adaptively voxel-filtered to ~100 points (max voxel 0.9 m).
+sensor::PointCloud2d LoopClosureCloud(const std::vector<Segment>& walls,
+                                      const common::Rigid2d& T_world_scan) {
+  sensor::AdaptiveVoxelFilterOptions options;
+  options.max_length_m = 0.9f;
+  options.min_num_points = 100;
+  return sensor::AdaptiveVoxelFilter(test_world::CastCloud(walls, T_world_scan, 360, 12.0),
+                                     options);
+}
+
+TEST(ScanInformation2DTest, ACorridorHoldsAMatchAcrossItButNotAlongIt) {
+  // Mid-corridor, turned 20 degrees: 12 m of range sees two parallel lines and no end.
+  const sensor::PointCloud2d cloud =
+      LoopClosureCloud(CorridorWalls(), common::Rigid2d(0.0, 0.1, common::DegToRad(20.0)));
+  ASSERT_GE(cloud.size(), 100u);
+  const ScanInformation2D info = ComputeScanInformation2D(cloud);
+  EXPECT_GT(info.points_on_lines, static_cast<int>(cloud.size()) / 2);
+  EXPECT_GT(info.strongest_translation, 0.0);
+  EXPECT_LT(info.TranslationRatio(), 0.01);
+  // The weak direction is the corridor's axis, turned into the scan's frame.
+  EXPECT_GT(std::abs(info.weakest_direction.dot(
+                Eigen::Vector2d(std::cos(-common::DegToRad(20.0)), std::sin(-common::DegToRad(20.0))))),
+            0.99);
+}
+
+TEST(ScanInformation2DTest, ARoomHoldsAMatchEveryWay) {
+  const sensor::PointCloud2d cloud =
+      LoopClosureCloud(test_world::SmallRoomWalls(), common::Rigid2d(-1.0, -0.5, 0.3));
+  const ScanInformation2D info = ComputeScanInformation2D(cloud);
+  EXPECT_GT(info.TranslationRatio(), 0.3);
+  EXPECT_GT(info.information(2, 2), 0.0);
+}
+
+TEST(ScanInformation2DTest, TheCorridorsEndGivesTheAxisBack) {
+  std::vector<Segment> closed = CorridorWalls();
+  closed.push_back({Eigen::Vector2d(-20.0, -1.0), Eigen::Vector2d(-20.0, 1.0)});
+  // 8 m from the closed west end, which the scan reaches.
+  const common::Rigid2d T_world_scan(-12.0, 0.0, 0.0);
+  const ScanInformation2D open_info =
+      ComputeScanInformation2D(LoopClosureCloud(CorridorWalls(), T_world_scan));
+  const ScanInformation2D closed_info =
+      ComputeScanInformation2D(LoopClosureCloud(closed, T_world_scan));
+  EXPECT_LT(open_info.TranslationRatio(), 0.01);
+  EXPECT_GT(closed_info.TranslationRatio(), 0.02);
+}
+
+TEST(ScanInformation2DTest, ScatteredPointsOnNoLineGiveNothing) {
+  // Three far-apart points: no point has neighbours within 2 m.
+  const sensor::PointCloud2d cloud = {Eigen::Vector2f(0.f, 5.f), Eigen::Vector2f(5.f, 0.f),
+                                      Eigen::Vector2f(-5.f, 0.f)};
+  const ScanInformation2D info = ComputeScanInformation2D(cloud);
+  EXPECT_EQ(info.points_on_lines, 0);
+  EXPECT_EQ(info.TranslationRatio(), 0.0);
+  EXPECT_TRUE(info.information.isZero());
+  EXPECT_EQ(ComputeScanInformation2D({}).TranslationRatio(), 0.0);
+}
+
+}  // namespace
+}  // namespace mapping
+}  // namespace fusemap
