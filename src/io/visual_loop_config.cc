@@ -70,6 +70,11 @@ struct ArbitrationRules {
                "must be > 0");
     c->Require(o.max_rotation_disagreement_rad > 0.0, "max_rotation_disagreement_rad",
                "must be > 0");
+    c->Require(o.max_forced_correction_m > 0.0, "max_forced_correction_m", "must be > 0");
+    c->Require(o.forced_correction_per_m >= 0.0, "forced_correction_per_m", "must be >= 0");
+    c->Require(o.max_forced_correction_rad > 0.0, "max_forced_correction_rad", "must be > 0");
+    c->Require(o.forced_correction_rad_per_m >= 0.0, "forced_correction_rad_per_m",
+               "must be >= 0");
   }
 };
 
@@ -169,6 +174,11 @@ VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader) {
                   &config.arbitration.max_translation_disagreement_m);
   arbitration.Get("max_rotation_disagreement_rad",
                   &config.arbitration.max_rotation_disagreement_rad);
+  arbitration.Get("max_forced_correction_m", &config.arbitration.max_forced_correction_m);
+  arbitration.Get("forced_correction_per_m", &config.arbitration.forced_correction_per_m);
+  arbitration.Get("max_forced_correction_rad", &config.arbitration.max_forced_correction_rad);
+  arbitration.Get("forced_correction_rad_per_m",
+                  &config.arbitration.forced_correction_rad_per_m);
   arbitration.CheckOptions(ArbitrationRules{config.arbitration});
 
   reader.CheckOptions(config);

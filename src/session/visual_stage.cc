@@ -54,10 +54,11 @@ std::string VisualSummaryLine(const VisualStageStats& s) {
   std::snprintf(line, sizeof(line),
                 "visual_loop: keyframes=%d candidates=%d verified=%d refused=%d "
                 "laser_loops_checked=%d laser_confirmed=%d visual_override=%d visual_forced=%d "
-                "laser_kept=%d laser_rejected=%d frames_in=%lld frames_offered=%lld "
-                "frames_dropped=%lld",
+                "laser_kept=%d laser_rejected=%d visual_rejected=%d frames_in=%lld "
+                "frames_offered=%lld frames_dropped=%lld",
                 s.checker.keyframes, s.checker.candidates, s.checker.verified, s.checker.rejected,
                 s.laser_loops_checked, s.confirmed, s.overridden, s.forced, s.kept, s.rejected,
+                s.visual_rejected,
                 static_cast<long long>(s.frames_in), static_cast<long long>(s.frames_offered),
                 static_cast<long long>(s.frames_dropped_no_pose + s.frames_dropped_pending));
   return line;
@@ -156,6 +157,23 @@ std::optional<common::Rigid2d> VisualStage::T_submap_base(int submap, int id) co
   return *T_submap_node * it->second.T_node_base;
 }
 
+double VisualStage::PathLengthM(int node_a, int node_b) const {
+  const std::shared_ptr<const pose_graph::PoseGraphSnapshot> snapshot = graph_->Snapshot();
+  const int from = std::min(node_a, node_b);
+  const int to = std::max(node_a, node_b);
+  double path_m = 0.0;
+  const common::Rigid2d* previous = nullptr;
+  // node_ids ascend.
+  for (size_t i = 0; i < snapshot->node_ids.size(); ++i) {
+    if (snapshot->node_ids[i] < from) continue;
+    if (snapshot->node_ids[i] > to) break;
+    const common::Rigid2d& pose = snapshot->T_map_nodes[i];
+    if (previous != nullptr) path_m += (pose.translation() - previous->translation()).norm();
+    previous = &pose;
+  }
+  return path_m;
+}
+
 std::optional<visual_loop::LoopMeasurement2D> VisualStage::ForNode(
     const visual_loop::LoopMeasurement2D& base_measurement, int id, int submap, int node) const {
   // The keyframe's base relative to `node` by the current estimate: they are at most a few
@@ -203,8 +221,16 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
                                       [id](const pose_graph::LoopClosure2D& l) { return l.id == id; }),
                        laser_loops_.end());
   }
+  // Without a laser loop, the correction it asks of the graph must be one drift explains.
+  std::optional<visual_loop::GraphEstimate2D> estimate;
+  const auto match = keyframes_.find(loop.match_keyframe);
+  const std::optional<common::Rigid2d> T_submap_node = graph_->T_submap_node(submap, node);
+  if (!laser && T_submap_node && match != keyframes_.end()) {
+    estimate = visual_loop::GraphEstimate2D{*T_submap_node, PathLengthM(match->second.node, node)};
+  }
   Apply(visual_loop::ArbitrateLoop(node, submap, laser_measurement, visual,
-                                   visual_loop::VisualCheck::kVerified, config_.arbitration),
+                                   visual_loop::VisualCheck::kVerified, config_.arbitration,
+                                   estimate),
         laser ? laser->loop_id : -1);
 }
 
@@ -323,6 +349,9 @@ void VisualStage::Apply(const visual_loop::ArbitrationRecord& record, int laser_
     case visual_loop::LoopDecision::kLaserRejected:
       if (!graph_->RemoveLoopConstraint(laser_id)) return;
       ++stats_.rejected;
+      break;
+    case visual_loop::LoopDecision::kVisualRejected:
+      ++stats_.visual_rejected;
       break;
   }
   records_.push_back(record);

@@ -12,6 +12,11 @@ bool ArbitrationOptions::IsValid(std::string* error) const {
     *error = "arbitration: disagreement thresholds must be positive";
     return false;
   }
+  if (!(max_forced_correction_m > 0.0) || !(forced_correction_per_m >= 0.0) ||
+      !(max_forced_correction_rad > 0.0) || !(forced_correction_rad_per_m >= 0.0)) {
+    *error = "arbitration: forced correction bounds must be positive";
+    return false;
+  }
   return true;
 }
 
@@ -39,13 +44,16 @@ const char* ToString(LoopDecision decision) {
       return "laser_kept";
     case LoopDecision::kLaserRejected:
       return "laser_rejected";
+    case LoopDecision::kVisualRejected:
+      return "visual_rejected";
   }
   return "?";
 }
 
 ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMeasurement2D>& laser,
                                 const std::optional<LoopMeasurement2D>& visual,
-                                VisualCheck visual_check, const ArbitrationOptions& options) {
+                                VisualCheck visual_check, const ArbitrationOptions& options,
+                                const std::optional<GraphEstimate2D>& estimate) {
   assert(laser || visual);
   ArbitrationRecord record;
   record.node = node;
@@ -75,6 +83,24 @@ ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMe
   }
   if (visual) {
     record.source = LoopSource::kVisual;
+    if (estimate) {
+      const common::Rigid2d correction = estimate->T_submap_node.inverse() * visual->T_submap_node;
+      const double bound_m =
+          options.max_forced_correction_m + options.forced_correction_per_m * estimate->path_m;
+      const double bound_rad = options.max_forced_correction_rad +
+                               options.forced_correction_rad_per_m * estimate->path_m;
+      if (correction.translation().norm() > bound_m || std::abs(correction.angle_rad()) > bound_rad) {
+        char numbers[192];
+        std::snprintf(numbers, sizeof(numbers),
+                      "asks a correction of %.2f m, %.1f deg; drift over %.1f m of path explains "
+                      "%.2f m, %.1f deg",
+                      correction.translation().norm(), std::abs(correction.angle_rad()) * 180.0 / M_PI,
+                      estimate->path_m, bound_m, bound_rad * 180.0 / M_PI);
+        record.decision = LoopDecision::kVisualRejected;
+        record.reason = std::string("visual loop without a laser loop ") + numbers + ": rejected";
+        return record;
+      }
+    }
     record.decision = LoopDecision::kVisualForced;
     record.chosen = visual;
     record.reason = "visual loop without a laser loop: forced";

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+
 namespace fusemap {
 namespace visual_loop {
 namespace {
@@ -64,6 +66,39 @@ TEST(LoopArbiterTest, DisagreementIsMeasuredInTheNodeFrame) {
   EXPECT_NEAR(record.rotation_disagreement_rad, 0.0, 1e-12);
   EXPECT_STREQ(ToString(record.decision), "laser_confirmed");
   EXPECT_STREQ(ToString(record.source), "both");
+}
+
+// The same poster hung twice, 18 m apart along the robot's 40 m path: the visual loop asks the
+// graph to move the node 18 m, where drift over 40 m explains 1 + 0.1 * 40 = 5 m. The same
+// place on the next lap, 90 m of path later, asks 0.3 m: forced.
+TEST(LoopArbiterTest, AVisualLoopDriftCannotExplainIsNotForced) {
+  const ArbitrationOptions options;
+  const GraphEstimate2D estimate{common::Rigid2d(2.0, 1.0, 0.5), 40.0};
+  const ArbitrationRecord trap = ArbitrateLoop(9, 2, std::nullopt, Measurement(20.0, 1.0, 0.5),
+                                               VisualCheck::kVerified, options, estimate);
+  EXPECT_EQ(trap.decision, LoopDecision::kVisualRejected);
+  EXPECT_STREQ(ToString(trap.decision), "visual_rejected");
+  EXPECT_EQ(trap.source, LoopSource::kVisual);
+  EXPECT_FALSE(trap.chosen.has_value());
+  EXPECT_TRUE(trap.visual.has_value());
+  EXPECT_NE(trap.reason.find("18.00 m"), std::string::npos) << trap.reason;
+
+  // Seen the other way round: the same wall, turned by pi.
+  const ArbitrationRecord turned = ArbitrateLoop(9, 2, std::nullopt, Measurement(2.0, 1.0, 0.5 + M_PI),
+                                                 VisualCheck::kVerified, options, estimate);
+  EXPECT_EQ(turned.decision, LoopDecision::kVisualRejected);
+
+  const ArbitrationRecord next_lap =
+      ArbitrateLoop(9, 2, std::nullopt, Measurement(2.3, 1.0, 0.52), VisualCheck::kVerified, options,
+                    GraphEstimate2D{common::Rigid2d(2.0, 1.0, 0.5), 90.0});
+  EXPECT_EQ(next_lap.decision, LoopDecision::kVisualForced);
+  ASSERT_TRUE(next_lap.chosen.has_value());
+
+  // The bound grows with the path: 18 m after 200 m of path is drift.
+  const ArbitrationRecord long_way = ArbitrateLoop(
+      9, 2, std::nullopt, Measurement(20.0, 1.0, 0.5), VisualCheck::kVerified, options,
+      GraphEstimate2D{common::Rigid2d(2.0, 1.0, 0.5), 200.0});
+  EXPECT_EQ(long_way.decision, LoopDecision::kVisualForced);
 }
 
 }  // namespace

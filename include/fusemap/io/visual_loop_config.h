@@ -62,8 +62,9 @@ bool LoadVisualLoopVocabulary(VisualLoopConfig* config, std::string* error);
 // (min_inliers, pnp_threshold_px, max_mean_reprojection_px, min_occupied_cells), planar
 // (max_roll_pitch_rad, max_height_m), contradiction (min_points, max_overlap_distance_m,
 // max_overlap_yaw_rad, max_inliers), arbitration (max_translation_disagreement_m,
-// max_rotation_disagreement_rad). With enabled, a vocabulary that cannot be loaded is an error
-// against the `vocabulary` key.
+// max_rotation_disagreement_rad, max_forced_correction_m, forced_correction_per_m,
+// max_forced_correction_rad, forced_correction_rad_per_m). With enabled, a vocabulary that
+// cannot be loaded is an error against the `vocabulary` key.
 VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader);
 
 }  // namespace io

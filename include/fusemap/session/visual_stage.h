@@ -42,11 +42,13 @@ struct VisualStageStats {
   int forced = 0;                       // visual_forced
   int kept = 0;                         // laser_kept
   int rejected = 0;                     // laser_rejected
+  int visual_rejected = 0;              // visual_rejected
 };
 
 // "visual_loop: keyframes=… candidates=… verified=… refused=… laser_loops_checked=…
 // laser_confirmed=… visual_override=… visual_forced=… laser_kept=… laser_rejected=…
-// frames_in=… frames_offered=… frames_dropped=…" (no newline): fusemap_offline's line.
+// visual_rejected=… frames_in=… frames_offered=… frames_dropped=…" (no newline):
+// fusemap_offline's line.
 std::string VisualSummaryLine(const VisualStageStats& stats);
 
 // The visual half of loop closure (issue 17): the ORB visual loop checker fed with camera
@@ -57,7 +59,8 @@ std::string VisualSummaryLine(const VisualStageStats& stats);
 //   (visual_loop::ArbitrateLoop): confirmed (source both), overridden (the visual measurement
 //   replaces it), kept, or rejected (removed);
 // - each visual loop the checker finds by appearance alone is arbitrated against a laser loop
-//   of the same node/submap pair if there is one, and otherwise forced into the graph.
+//   of the same node/submap pair if there is one, and otherwise forced into the graph unless
+//   the correction it asks is more than drift explains (rejected).
 // Every decision is recorded (records(), DIR/loops.tsv). A laser loop waits until the frames
 // up to its node have been seen (or max_node_gap more nodes came), so that its place has
 // keyframes. Keyframes of trimmed submaps are released.
@@ -111,6 +114,8 @@ class VisualStage {
   void Apply(const visual_loop::ArbitrationRecord& record, int laser_id);
   // Where keyframe `id`'s base stands in `submap` by the current estimate.
   std::optional<common::Rigid2d> T_submap_base(int submap, int id) const;
+  // The path between two nodes by the graph's current poses (over the nodes it still holds).
+  double PathLengthM(int node_a, int node_b) const;
   // A node-in-submap measurement of `node` from one of keyframe `id`'s base.
   std::optional<visual_loop::LoopMeasurement2D> ForNode(
       const visual_loop::LoopMeasurement2D& base_measurement, int id, int submap,

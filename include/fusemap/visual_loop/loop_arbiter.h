@@ -34,6 +34,7 @@ enum class LoopDecision {
   kVisualForced,     // visual only: forced into the graph
   kLaserKept,        // laser only, the camera did not contradict it
   kLaserRejected,    // laser only and the camera positively contradicts it
+  kVisualRejected,   // visual only, but asks a correction drift cannot explain: not forced
 };
 const char* ToString(LoopSource source);
 const char* ToString(LoopDecision decision);
@@ -42,7 +43,25 @@ struct ArbitrationOptions {
   // Laser and visual agree when their relative poses differ by at most this much.
   double max_translation_disagreement_m = 0.3;
   double max_rotation_disagreement_rad = 0.1;
+  // A visual loop without a laser loop is forced only if the correction it asks of the graph's
+  // estimate is one that drift explains: at most max_forced_correction_m plus
+  // forced_correction_per_m times the path travelled between the two views (and likewise in
+  // rotation). Beyond that it is a second place that looks the same (one poster hung twice), or
+  // the same wall seen from the other way. 10 % of the path is generous for wheel odometry
+  // corrected by scan matching, and the laser searched only 4 m around its estimate.
+  double max_forced_correction_m = 1.0;
+  double forced_correction_per_m = 0.1;
+  double max_forced_correction_rad = 0.35;
+  double forced_correction_rad_per_m = 0.01;
   bool IsValid(std::string* error) const;
+};
+
+// Where the pose graph puts the node in the submap now, and how far the robot travelled between
+// the visual loop's two views (by the graph's poses): what a visual loop without a laser loop
+// is checked against.
+struct GraphEstimate2D {
+  common::Rigid2d T_submap_node;
+  double path_m = 0.0;
 };
 
 // Every decision as a record: which constraint enters the graph (none when rejected), why, and
@@ -62,9 +81,11 @@ struct ArbitrationRecord {
 
 // The arbitration of issue 17 for one node/submap pair. At least one of laser and a verified
 // visual measurement must be given; visual_check describes the camera when visual is absent.
+// `estimate`, when given, gates a visual loop without a laser loop (max_forced_correction_m).
 ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMeasurement2D>& laser,
                                 const std::optional<LoopMeasurement2D>& visual,
-                                VisualCheck visual_check, const ArbitrationOptions& options);
+                                VisualCheck visual_check, const ArbitrationOptions& options,
+                                const std::optional<GraphEstimate2D>& estimate = std::nullopt);
 
 }  // namespace visual_loop
 }  // namespace fusemap
