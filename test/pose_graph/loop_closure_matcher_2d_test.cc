@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <vector>
 
@@ -41,18 +42,24 @@ sensor::PointCloud2d LoopClosureCloud(const sensor::RangeData& range_data) {
 
 common::Rigid2d ArcPose(int i) { return test_world::ArcPose(i, 0.1); }
 
-// A finished submap built from 20 scans along the arc, inserted at their true poses (so the
-// local frame is the world frame).
-std::shared_ptr<const mapping::Submap2D> BuildFinishedSubmap() {
+// A finished submap built from 20 scans of `walls` taken at pose(0..19), inserted at those
+// true poses (so the local frame is the world frame).
+std::shared_ptr<const mapping::Submap2D> BuildFinishedSubmap(
+    const std::vector<Segment>& walls, const std::function<common::Rigid2d(int)>& pose) {
   mapping::SubmapsOptions options;
   options.num_range_data = 10;
   mapping::ActiveSubmaps2D active(options);
   std::shared_ptr<const mapping::Submap2D> front;
   for (int i = 0; i < 20; ++i) {
-    const sensor::RangeData data = SimulateRangeData(Room(), ArcPose(i));
-    front = active.InsertRangeData(sensor::TransformRangeData(data, ArcPose(i))).front();
+    const sensor::RangeData data = SimulateRangeData(walls, pose(i));
+    front = active.InsertRangeData(sensor::TransformRangeData(data, pose(i))).front();
   }
   return front;
+}
+
+// ... along the arc around the room's island.
+std::shared_ptr<const mapping::Submap2D> BuildFinishedSubmap() {
+  return BuildFinishedSubmap(Room(), ArcPose);
 }
 
 TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
@@ -107,17 +114,9 @@ std::vector<Segment> Corridor() {
   return {{{-30.0, -1.0}, {30.0, -1.0}}, {{-30.0, 1.0}, {30.0, 1.0}}};
 }
 
+// ... 0.2 m apart along the corridor's axis.
 std::shared_ptr<const mapping::Submap2D> BuildFinishedCorridorSubmap() {
-  mapping::SubmapsOptions options;
-  options.num_range_data = 10;
-  mapping::ActiveSubmaps2D active(options);
-  std::shared_ptr<const mapping::Submap2D> front;
-  for (int i = 0; i < 20; ++i) {
-    const common::Rigid2d pose(0.2 * i, 0.0, 0.0);
-    const sensor::RangeData data = SimulateRangeData(Corridor(), pose);
-    front = active.InsertRangeData(sensor::TransformRangeData(data, pose)).front();
-  }
-  return front;
+  return BuildFinishedSubmap(Corridor(), [](int i) { return common::Rigid2d(0.2 * i, 0.0, 0.0); });
 }
 
 TEST(LoopClosureMatcher2DTest, RefusesAMatchThatCanSlideAlongACorridor) {
