@@ -1,6 +1,7 @@
 #include "map_builder_state_codec.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "submap_state_codec.h"
@@ -143,6 +144,9 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->U8(static_cast<uint8_t>(c.source));
     out->I32(c.loop_id);
     out->F64(c.laser_score);
+    // Format 5: the direction a laser loop closure does not measure (0, 0 when none).
+    out->F64(c.unmeasured_direction.x());
+    out->F64(c.unmeasured_direction.y());
   }
   out->U64(g.searches_in_flight.size());
   for (const auto& s : g.searches_in_flight) {
@@ -302,13 +306,22 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
       if (!DecodeRigid2d(in, &T)) return false;
     }
   }
-  if (!in->Count(62, &n)) return false;
+  if (!in->Count(78, &n)) return false;
   g.constraints.resize(n);
   for (auto& c : g.constraints) {
     uint8_t tag = 0, source = 0;
+    double unmeasured_x = 0.0, unmeasured_y = 0.0;
     if (!in->I32(&c.submap) || !in->I32(&c.node) || !DecodeRigid2d(in, &c.T_submap_node) ||
         !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->U8(&tag) ||
-        !in->U8(&source) || !in->I32(&c.loop_id) || !in->F64(&c.laser_score)) {
+        !in->U8(&source) || !in->I32(&c.loop_id) || !in->F64(&c.laser_score) ||
+        !in->F64(&unmeasured_x) || !in->F64(&unmeasured_y)) {
+      return false;
+    }
+    c.unmeasured_direction = Eigen::Vector2d(unmeasured_x, unmeasured_y);
+    const double norm = c.unmeasured_direction.norm();
+    if (!(norm == 0.0 || std::abs(norm - 1.0) < 1e-6)) {
+      in->Fail("constraint unmeasured direction has length " + std::to_string(norm) +
+               ", not 0 or 1");
       return false;
     }
     if (tag > pose_graph::Constraint2D::kLoopClosureCandidate) {

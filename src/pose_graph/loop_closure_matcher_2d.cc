@@ -1,5 +1,7 @@
 #include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 
+#include "fusemap/mapping/scan_matching/scan_information_2d.h"
+
 namespace fusemap {
 namespace pose_graph {
 
@@ -23,8 +25,9 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
                  "must be > 0");
   check->Require(loop_closure_rotation_weight > 0.0, "loop_closure_rotation_weight",
                  "must be > 0");
-  check->Require(min_translation_information_ratio >= 0.0 && min_translation_information_ratio <= 1.0,
-                 "min_translation_information_ratio", "must be in [0, 1]");
+  check->Require(
+      min_translation_information_ratio >= 0.0 && min_translation_information_ratio <= 1.0,
+      "min_translation_information_ratio", "must be in [0, 1]");
   check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
 }
@@ -61,11 +64,8 @@ LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap
 
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
     const common::Rigid2d& T_submap_node_estimate, const sensor::PointCloud2d& cloud,
-    double* score, MatchRefusal* refusal) const {
+    double* score) const {
   *score = 0.0;
-  MatchRefusal ignored;
-  if (refusal == nullptr) refusal = &ignored;
-  *refusal = MatchRefusal::kLowScore;
   if (cloud.empty()) return std::nullopt;
   // Submap grids live in the local SLAM frame; T_local_submap takes submap to grid coordinates.
   const common::Rigid2d T_grid_submap = submap_->T_local_submap();
@@ -73,14 +73,6 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   common::Rigid2d T_grid_node;
   if (!fast_matcher_.Match(initial, cloud, options_.fast_correlative_scan_matcher.min_score, score,
                           &T_grid_node)) {
-    return std::nullopt;
-  }
-  // Where the scan holds the match in one direction only (a corridor of plain walls), the
-  // score was as high anywhere along the other: where the match landed is no measurement.
-  if (options_.min_translation_information_ratio > 0.0 &&
-      mapping::ComputeScanInformation2D(cloud).TranslationRatio() <
-          options_.min_translation_information_ratio) {
-    *refusal = MatchRefusal::kDegenerate;
     return std::nullopt;
   }
   // Only matches that pass min_score are refined, a small fraction of the searches: they
@@ -91,9 +83,26 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   ceres::Solver::Summary summary;
   ceres_matcher_.Match(T_grid_node.translation(), T_grid_node, cloud, *grid, &refined,
                        &summary);
-  *refusal = MatchRefusal::kNone;
   Constraint2D constraint;
   constraint.T_submap_node = T_grid_submap.inverse() * refined;
+  // Where the scan holds the match in one direction only (a corridor of plain walls), the
+  // score was as high anywhere along the other: the constraint measures nothing there, and
+  // keeps the estimate's translation along it so that loops.tsv shows no invented slide.
+  if (options_.min_translation_information_ratio > 0.0) {
+    const mapping::ScanInformation2D information = mapping::ComputeScanInformation2D(cloud);
+    if (information.TranslationRatio() < options_.min_translation_information_ratio) {
+      const Eigen::Vector2d along_in_submap =
+          constraint.T_submap_node.rotation() * information.weakest_direction;
+      const Eigen::Vector2d slide =
+          along_in_submap.dot(T_submap_node_estimate.translation() -
+                              constraint.T_submap_node.translation()) *
+          along_in_submap;
+      constraint.T_submap_node =
+          common::Rigid2d(constraint.T_submap_node.translation() + slide,
+                          constraint.T_submap_node.angle_rad());
+      constraint.unmeasured_direction = information.weakest_direction;
+    }
+  }
   constraint.translation_weight = options_.loop_closure_translation_weight;
   constraint.rotation_weight = options_.loop_closure_rotation_weight;
   constraint.tag = Constraint2D::kInterSubmap;

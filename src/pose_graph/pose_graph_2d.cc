@@ -209,20 +209,17 @@ std::function<void()> PoseGraph2D::SearchTaskLocked(std::uint64_t id,
   return [this, matcher, cloud, search, id] {
     const auto start = std::chrono::steady_clock::now();
     double score = 0.0;
-    MatchRefusal refusal = MatchRefusal::kNone;
-    std::optional<Constraint2D> constraint =
-        matcher->Match(search.T_submap_node, *cloud, &score, &refusal);
-
+    std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
     std::lock_guard<std::mutex> lock(mutex_);
     searches_in_flight_.erase(id);
     stats_.loop_closure_search_s += SecondsSince(start);
     ++stats_.loop_closure_searches;
-    if (refusal == MatchRefusal::kDegenerate) ++stats_.loop_closures_degenerate;
     // The trimmer may have dropped either end while the search ran.
     if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
     constraint->submap = search.submap;
     constraint->node = search.node;
     constraint->laser_score = score;
+    if (!constraint->unmeasured_direction.isZero()) ++stats_.loop_closures_degenerate;
     AddLoopClosureLocked(*constraint);
   };
 }

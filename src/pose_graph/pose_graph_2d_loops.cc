@@ -69,6 +69,7 @@ bool PoseGraph2D::ReplaceLoopConstraint(int id, const ExternalLoopConstraint2D& 
   Constraint2D* c = FindLoopLocked(id);
   if (c == nullptr) return false;
   c->T_submap_node = external.T_submap_node;
+  c->unmeasured_direction = Eigen::Vector2d::Zero();  // a visual loop measures every way
   c->translation_weight = external.translation_weight;
   c->rotation_weight = external.rotation_weight;
   c->source = external.source;

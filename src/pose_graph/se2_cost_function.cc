@@ -91,6 +91,18 @@ Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotatio
       .asDiagonal();
 }
 
+Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& unmeasured_direction) {
+  Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
+  if (unmeasured_direction.isZero()) return information;
+  constexpr double kKeptFraction = 1e-6;
+  const Eigen::Vector2d d = unmeasured_direction.normalized();
+  information.topLeftCorner<2, 2>() =
+      translation_weight * translation_weight *
+      (Eigen::Matrix2d::Identity() - (1.0 - kKeptFraction) * d * d.transpose());
+  return information;
+}
+
 Eigen::Vector3d Se2EdgeError(const common::Rigid2d& T_map_from, const common::Rigid2d& T_map_to,
                              const common::Rigid2d& T_from_to) {
   const double from[3] = {T_map_from.x(), T_map_from.y(), T_map_from.angle_rad()};

@@ -45,7 +45,8 @@ void SparsePoseAdjustment2D::SetNodePose(int node, const common::Rigid2d& T_map_
 
 OptimizationSummary SparsePoseAdjustment2D::Solve(const OptimizationOptions& options) {
   // Same code path as any SE(2) graph: submaps are vertices [0, S), nodes [S, S + N); a
-  // node-in-submap constraint is an edge submap -> node with diagonal information.
+  // node-in-submap constraint is an edge submap -> node with diagonal information (but for a
+  // loop closure that measures nothing along one direction).
   const int num_submaps = static_cast<int>(T_map_submaps_.size());
   Se2Graph graph;
   graph.vertices = T_map_submaps_;
@@ -55,7 +56,8 @@ OptimizationSummary SparsePoseAdjustment2D::Solve(const OptimizationOptions& opt
   graph.edges.reserve(constraints_.size() + node_to_node_constraints_.size());
   for (const Constraint2D& c : constraints_) {
     graph.edges.push_back({c.submap, num_submaps + c.node, c.T_submap_node,
-                           InformationFromWeights(c.translation_weight, c.rotation_weight),
+                           InformationFromWeights(c.translation_weight, c.rotation_weight,
+                                                  c.unmeasured_direction),
                            c.tag == Constraint2D::kInterSubmap});
   }
   for (const NodeToNodeConstraint2D& c : node_to_node_constraints_) {

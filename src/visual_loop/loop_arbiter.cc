@@ -14,7 +14,7 @@ bool ArbitrationOptions::IsValid(std::string* error) const {
   }
   if (!(max_forced_correction_m > 0.0) || !(forced_correction_per_m >= 0.0) ||
       !(max_forced_correction_rad > 0.0) || !(forced_correction_rad_per_m >= 0.0)) {
-    *error = "arbitration: forced correction bounds must be positive";
+    *error = "arbitration: forced correction bounds must be positive (their per-metre rates >= 0)";
     return false;
   }
   return true;
@@ -89,13 +89,15 @@ ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMe
           options.max_forced_correction_m + options.forced_correction_per_m * estimate->path_m;
       const double bound_rad = options.max_forced_correction_rad +
                                options.forced_correction_rad_per_m * estimate->path_m;
-      if (correction.translation().norm() > bound_m || std::abs(correction.angle_rad()) > bound_rad) {
+      const double correction_m = correction.translation().norm();
+      const double correction_rad = std::abs(correction.angle_rad());
+      if (correction_m > bound_m || correction_rad > bound_rad) {
         char numbers[192];
         std::snprintf(numbers, sizeof(numbers),
                       "asks a correction of %.2f m, %.1f deg; drift over %.1f m of path explains "
                       "%.2f m, %.1f deg",
-                      correction.translation().norm(), std::abs(correction.angle_rad()) * 180.0 / M_PI,
-                      estimate->path_m, bound_m, bound_rad * 180.0 / M_PI);
+                      correction_m, correction_rad * 180.0 / M_PI, estimate->path_m, bound_m,
+                      bound_rad * 180.0 / M_PI);
         record.decision = LoopDecision::kVisualRejected;
         record.reason = std::string("visual loop without a laser loop ") + numbers + ": rejected";
         return record;

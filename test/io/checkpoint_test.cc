@@ -195,6 +195,40 @@ TEST(CheckpointTest, LoopSourcesIdsAndScoresRoundTripAndBadSourcesAreRejected) {
   EXPECT_NE(error.find("source"), std::string::npos) << error;
 }
 
+// A corridor loop closure keeps the direction it does not measure; a direction that is neither
+// zero nor a unit vector is an error.
+TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
+  CheckpointContents contents = Contents();
+  auto& constraints = contents.state.pose_graph.constraints;
+  ASSERT_FALSE(constraints.empty());
+  pose_graph::Constraint2D corridor = constraints.back();
+  corridor.tag = pose_graph::Constraint2D::kInterSubmap;
+  corridor.laser_score = 0.8125;
+  corridor.unmeasured_direction = Eigen::Vector2d(0.6, -0.8);
+  constraints.push_back(corridor);
+  const std::string bytes = EncodeCheckpoint(contents, false);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  EXPECT_EQ(read.state.pose_graph.constraints.back().unmeasured_direction,
+            Eigen::Vector2d(0.6, -0.8));
+  EXPECT_TRUE(read.state.pose_graph.constraints.front().unmeasured_direction.isZero());
+
+  // The direction follows the laser score.
+  std::string payload = bytes.substr(36);
+  std::string tail;
+  ByteWriter tail_writer(&tail);
+  tail_writer.F64(0.8125);
+  tail_writer.F64(0.6);
+  const size_t at = payload.find(tail);
+  ASSERT_NE(at, std::string::npos);
+  std::string longer;
+  ByteWriter(&longer).F64(0.9);
+  payload.replace(at + 8, 8, longer);
+  EXPECT_FALSE(DecodeCheckpoint(Reseal(bytes, payload), "ckpt", &read, &error));
+  EXPECT_NE(error.find("unmeasured direction"), std::string::npos) << error;
+}
+
 TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
   CheckpointContents contents = MakeContents(true);
   // What the daemon does before each save: trimmed nodes leave the graph.

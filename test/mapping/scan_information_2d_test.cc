@@ -40,8 +40,9 @@ TEST(ScanInformation2DTest, ACorridorHoldsAMatchAcrossItButNotAlongIt) {
   EXPECT_GT(info.strongest_translation, 0.0);
   EXPECT_LT(info.TranslationRatio(), 0.01);
   // The weak direction is the corridor's axis, turned into the scan's frame.
+  const double axis_rad = -common::DegToRad(20.0);
   EXPECT_GT(std::abs(info.weakest_direction.dot(
-                Eigen::Vector2d(std::cos(-common::DegToRad(20.0)), std::sin(-common::DegToRad(20.0))))),
+                Eigen::Vector2d(std::cos(axis_rad), std::sin(axis_rad)))),
             0.99);
 }
 

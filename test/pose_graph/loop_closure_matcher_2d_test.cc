@@ -74,11 +74,11 @@ TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
   const common::Rigid2d estimate(T_submap_node.translation() + Eigen::Vector2d(0.5, 0.0),
                                  T_submap_node.angle_rad() + common::DegToRad(5.0));
   double score = 0.0;
-  MatchRefusal refusal = MatchRefusal::kLowScore;
-  const auto constraint = matcher.Match(
-      estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score, &refusal);
+  const auto constraint =
+      matcher.Match(estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score);
   ASSERT_TRUE(constraint.has_value()) << "score " << score;
-  EXPECT_EQ(refusal, MatchRefusal::kNone);
+  // The room holds the match every way.
+  EXPECT_TRUE(constraint->unmeasured_direction.isZero());
   std::printf("score %.3f, error %.4f m %.4f deg\n", score,
               (constraint->T_submap_node.translation() - T_submap_node.translation()).norm(),
               common::NormalizeAngle(constraint->T_submap_node.angle_rad() -
@@ -119,28 +119,43 @@ std::shared_ptr<const mapping::Submap2D> BuildFinishedCorridorSubmap() {
   return BuildFinishedSubmap(Corridor(), [](int i) { return common::Rigid2d(0.2 * i, 0.0, 0.0); });
 }
 
-TEST(LoopClosureMatcher2DTest, RefusesAMatchThatCanSlideAlongACorridor) {
+TEST(LoopClosureMatcher2DTest, ACorridorMatchHoldsTheNodeAcrossTheCorridorOnly) {
   const auto submap = BuildFinishedCorridorSubmap();
   ASSERT_TRUE(submap->finished());
   const common::Rigid2d T_world_node(2.0, 0.1, 0.05);
+  const common::Rigid2d T_submap_node = submap->T_local_submap().inverse() * T_world_node;
+  // 0.5 m off along the corridor, 0.2 m across it.
   const common::Rigid2d estimate =
       submap->T_local_submap().inverse() *
-      common::Rigid2d(T_world_node.translation() + Eigen::Vector2d(0.5, 0.0), 0.05);
+      common::Rigid2d(T_world_node.translation() + Eigen::Vector2d(0.5, 0.2), 0.05);
   const sensor::PointCloud2d cloud = LoopClosureCloud(SimulateRangeData(Corridor(), T_world_node));
+  // The corridor's axis, in the submap frame.
+  const Eigen::Vector2d axis = submap->T_local_submap().rotation().inverse() * Eigen::Vector2d::UnitX();
 
-  ConstraintBuilderOptions2D accept_all;
-  accept_all.min_translation_information_ratio = 0.0;
+  ConstraintBuilderOptions2D every_way;
+  every_way.min_translation_information_ratio = 0.0;
   double score = 0.0;
-  MatchRefusal refusal = MatchRefusal::kLowScore;
-  // The match scores well: only the corridor's axis is unknown.
-  EXPECT_TRUE(LoopClosureMatcher2D(submap, accept_all).Match(estimate, cloud, &score, &refusal));
-  EXPECT_GT(score, accept_all.fast_correlative_scan_matcher.min_score);
-  EXPECT_EQ(refusal, MatchRefusal::kNone);
+  const auto plain = LoopClosureMatcher2D(submap, every_way).Match(estimate, cloud, &score);
+  ASSERT_TRUE(plain.has_value());
+  EXPECT_GT(score, every_way.fast_correlative_scan_matcher.min_score);
+  EXPECT_TRUE(plain->unmeasured_direction.isZero());
 
   const ConstraintBuilderOptions2D defaults;
   EXPECT_GT(defaults.min_translation_information_ratio, 0.0);
-  EXPECT_FALSE(LoopClosureMatcher2D(submap, defaults).Match(estimate, cloud, &score, &refusal));
-  EXPECT_EQ(refusal, MatchRefusal::kDegenerate);
+  const auto held = LoopClosureMatcher2D(submap, defaults).Match(estimate, cloud, &score);
+  ASSERT_TRUE(held.has_value());
+  // It measures nothing along the corridor (the node's frame is turned 0.05 rad from it)...
+  EXPECT_NEAR(held->unmeasured_direction.norm(), 1.0, 1e-9);
+  EXPECT_GT(std::abs(held->unmeasured_direction.dot(
+                Eigen::Vector2d(std::cos(-0.05), std::sin(-0.05)))),
+            0.99);
+  // ... keeps the estimate there, and measures the rest.
+  const Eigen::Vector2d off = held->T_submap_node.translation() - T_submap_node.translation();
+  EXPECT_NEAR(off.dot(axis), 0.5, 0.01);
+  EXPECT_LT(std::abs(off.dot(Eigen::Vector2d(-axis.y(), axis.x()))), 0.03);
+  EXPECT_LT(std::abs(common::NormalizeAngle(held->T_submap_node.angle_rad() -
+                                            T_submap_node.angle_rad())),
+            common::DegToRad(0.5));
 }
 
 TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {

@@ -129,6 +129,27 @@ TEST(SparsePoseAdjustment2DTest, HuberLossDownweightsWrongLoopClosure) {
   EXPECT_LT(error_m[1], 0.15);
 }
 
+// A corridor loop closure slid 3 m along the corridor (the node's x axis) pulls the graph by 3 m,
+// unless it says it measures nothing along that axis; what it measures across is still used.
+TEST(SparsePoseAdjustment2DTest, NothingAlongAnUnmeasuredDirection) {
+  double error_m[2];
+  for (const bool unmeasured : {false, true}) {
+    SquareLoop loop;
+    BuildSquareLoop(&loop);
+    Constraint2D slid{0, 25, loop.truth[25] * Rigid2d(3.0, 0.0, 0.0), 10.0, 50.0,
+                      Constraint2D::kInterSubmap};
+    if (unmeasured) slid.unmeasured_direction = Eigen::Vector2d::UnitX();
+    loop.spa.AddConstraint(slid);
+    OptimizationOptions options;
+    options.huber_scale = 0.0;
+    loop.spa.Solve(options);
+    error_m[unmeasured] = MaxNodeError(loop);
+  }
+  // 4.7 cm without the slid closure.
+  EXPECT_GT(error_m[0], 1.0);
+  EXPECT_LT(error_m[1], 0.1);
+}
+
 TEST(SparsePoseAdjustment2DTest, SnapshotIsAnImmutableCopy) {
   SquareLoop loop;
   BuildSquareLoop(&loop);

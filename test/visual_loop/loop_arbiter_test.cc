@@ -84,13 +84,14 @@ TEST(LoopArbiterTest, AVisualLoopDriftCannotExplainIsNotForced) {
   EXPECT_NE(trap.reason.find("18.00 m"), std::string::npos) << trap.reason;
 
   // Seen the other way round: the same wall, turned by pi.
-  const ArbitrationRecord turned = ArbitrateLoop(9, 2, std::nullopt, Measurement(2.0, 1.0, 0.5 + M_PI),
-                                                 VisualCheck::kVerified, options, estimate);
+  const ArbitrationRecord turned =
+      ArbitrateLoop(9, 2, std::nullopt, Measurement(2.0, 1.0, 0.5 + M_PI), VisualCheck::kVerified,
+                    options, estimate);
   EXPECT_EQ(turned.decision, LoopDecision::kVisualRejected);
 
   const ArbitrationRecord next_lap =
-      ArbitrateLoop(9, 2, std::nullopt, Measurement(2.3, 1.0, 0.52), VisualCheck::kVerified, options,
-                    GraphEstimate2D{common::Rigid2d(2.0, 1.0, 0.5), 90.0});
+      ArbitrateLoop(9, 2, std::nullopt, Measurement(2.3, 1.0, 0.52), VisualCheck::kVerified,
+                    options, GraphEstimate2D{common::Rigid2d(2.0, 1.0, 0.5), 90.0});
   EXPECT_EQ(next_lap.decision, LoopDecision::kVisualForced);
   ASSERT_TRUE(next_lap.chosen.has_value());
 

@@ -9,7 +9,6 @@
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/mapping/scan_matching/ceres_scan_matcher_2d.h"
 #include "fusemap/mapping/scan_matching/fast_correlative_scan_matcher_2d.h"
-#include "fusemap/mapping/scan_matching/scan_information_2d.h"
 #include "fusemap/mapping/submap_2d.h"
 #include "fusemap/pose_graph/pose_graph_types.h"
 #include "fusemap/sensor/sensor_types.h"
@@ -30,10 +29,12 @@ struct ConstraintBuilderOptions2D {
   double loop_closure_translation_weight = 1.1e6;
   double loop_closure_rotation_weight = 1e7;
   // A match of a scan whose translation information along its weakest direction is below this
-  // fraction of that along its strongest (mapping::ScanInformation2D::TranslationRatio) is
-  // refused: in a corridor of plain walls the match slides along it at no cost, so where it
-  // lands says nothing about where the node is. Such scans measure below 0.005, scans that see
-  // a corner or a doorway above 0.05 (simulator corridor, 2,653 matches). 0 accepts every match.
+  // fraction of that along its strongest (mapping::ScanInformation2D::TranslationRatio) measures
+  // nothing along that direction: in a corridor of plain walls the match slides along it at no
+  // cost, so where it lands there says nothing about where the node is. Its constraint holds
+  // the node across the corridor and in heading only (Constraint2D::unmeasured_direction). Such
+  // scans measure below 0.005, scans that see a corner or a doorway above 0.05 (simulator
+  // corridor, 2,653 matches). 0 takes every match as measuring every way.
   double min_translation_information_ratio = 0.02;
   mapping::FastCorrelativeScanMatcherOptions2D fast_correlative_scan_matcher;
   mapping::CeresScanMatcherOptions2D ceres_scan_matcher;
@@ -50,13 +51,6 @@ struct ConstraintBuilderOptions2D {
 // ceres_scan_matcher.
 ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader);
 
-// Why LoopClosureMatcher2D::Match found no constraint.
-enum class MatchRefusal {
-  kNone,        // a constraint was found
-  kLowScore,    // no candidate scored above min_score (or an empty cloud)
-  kDegenerate,  // min_translation_information_ratio
-};
-
 // A finished submap prepared for loop closure: its precomputation grids are built once
 // (the expensive part) and then shared read-only by every search against it.
 class LoopClosureMatcher2D {
@@ -66,12 +60,12 @@ class LoopClosureMatcher2D {
 
   // Searches for `cloud` (tracking frame) in the submap around the estimate T_submap_node.
   // Returns a kInterSubmap constraint (with submap/node indices left for the caller) if the
-  // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score and the refined
-  // match is not degenerate (min_translation_information_ratio); `score` receives the best
-  // score found, `refusal` (if given) why no constraint was returned.
+  // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score; `score` receives
+  // the best score found. For a degenerate scan (min_translation_information_ratio) the
+  // constraint's unmeasured_direction is set and its translation along it is the estimate's:
+  // the match's is no measurement, and the constraint holds nothing there.
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
-                                    const sensor::PointCloud2d& cloud, double* score,
-                                    MatchRefusal* refusal = nullptr) const;
+                                    const sensor::PointCloud2d& cloud, double* score) const;
   // Memory held by the precomputation grids (the submap is counted by its owner).
   size_t bytes() const { return fast_matcher_.precomputation_grids().bytes(); }
 

@@ -124,7 +124,7 @@ class PoseGraph2D {
     // Matches waiting for loop-closure verification now (not checkpointed; included in
     // constraints, not in loop_closures_found).
     int loop_closure_candidates = 0;
-    // Matches refused as degenerate, free to slide along a corridor
+    // Loop closures found whose scan could slide along a corridor, held across it only
     // (constraint_builder.min_translation_information_ratio; not checkpointed).
     int loop_closures_degenerate = 0;
     // Loop-closure searches queued and not yet finished: now, and the most at any time since

@@ -1,6 +1,8 @@
 #ifndef FUSEMAP_POSE_GRAPH_POSE_GRAPH_TYPES_H_
 #define FUSEMAP_POSE_GRAPH_POSE_GRAPH_TYPES_H_
 
+#include <Eigen/Core>
+
 #include "fusemap/common/rigid_transform.h"
 
 namespace fusemap {
@@ -30,6 +32,10 @@ struct Constraint2D {
   // Loop closures (and candidates): a stable id, PoseGraph2D's handle for them; -1 otherwise.
   int loop_id = -1;
   double laser_score = 0.0;  // the laser matcher's score, laser loop closures only
+  // A laser loop closure whose scan holds the match in one direction only (a corridor of plain
+  // walls, mapping::ScanInformation2D): the unit vector, in the node's frame, along which it
+  // measures nothing. Zero when it measures every way.
+  Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
 };
 
 // Odometry or local-SLAM relative motion between two nodes (usually consecutive ones).

@@ -28,6 +28,11 @@ bool SqrtInformation(const Eigen::Matrix3d& information, Eigen::Matrix3d* sqrt_i
 
 // The diagonal information of Cartographer-style weights: residual = weights .* e.
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight);
+// The same, but with (almost) no translation information along `unmeasured_direction` (a unit
+// vector in the measurement's frame; zero: none unmeasured). A 1e-6 fraction of it is kept so
+// that the information stays positive definite for SqrtInformation.
+Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& unmeasured_direction);
 
 // The unwhitened error e above, for reporting and tests.
 Eigen::Vector3d Se2EdgeError(const common::Rigid2d& T_map_from, const common::Rigid2d& T_map_to,
