@@ -6,6 +6,7 @@
 
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <random>
 #include <string>
 
@@ -46,6 +47,19 @@ CheckpointContents MakeContents(bool trim) {
 
 const CheckpointContents& Contents() {
   static const CheckpointContents contents = MakeContents(false);
+  return contents;
+}
+
+// Contents() with one more constraint: a copy of its last one as `edit` changes it.
+CheckpointContents WithOneMoreConstraint(
+    const std::function<void(pose_graph::Constraint2D*)>& edit) {
+  CheckpointContents contents = Contents();
+  auto& constraints = contents.state.pose_graph.constraints;
+  EXPECT_FALSE(constraints.empty());
+  if (constraints.empty()) return contents;
+  pose_graph::Constraint2D extra = constraints.back();
+  edit(&extra);
+  constraints.push_back(extra);
   return contents;
 }
 
@@ -127,13 +141,12 @@ TEST(CheckpointTest, TrimmedSubmapsAndNodesRoundTrip) {
 
 // Loop-closure candidates (waiting for verification) keep their tag; an unknown tag is an error.
 TEST(CheckpointTest, LoopClosureCandidatesRoundTripAndBadTagsAreRejected) {
-  CheckpointContents contents = Contents();
-  auto& constraints = contents.state.pose_graph.constraints;
-  ASSERT_FALSE(constraints.empty());
-  pose_graph::Constraint2D candidate = constraints.back();
-  candidate.tag = pose_graph::Constraint2D::kLoopClosureCandidate;
-  candidate.T_submap_node = common::Rigid2d(0.123456789, -2.5, 0.75);
-  constraints.push_back(candidate);
+  const CheckpointContents contents = WithOneMoreConstraint([](pose_graph::Constraint2D* c) {
+    c->tag = pose_graph::Constraint2D::kLoopClosureCandidate;
+    c->T_submap_node = common::Rigid2d(0.123456789, -2.5, 0.75);
+  });
+  const auto& constraints = contents.state.pose_graph.constraints;
+  const pose_graph::Constraint2D& candidate = constraints.back();
   const std::string bytes = EncodeCheckpoint(contents, false);
   CheckpointContents read;
   std::string error;
@@ -159,16 +172,14 @@ TEST(CheckpointTest, LoopClosureCandidatesRoundTripAndBadTagsAreRejected) {
 // Loop constraints keep what measured them, their id and laser score (the visual loop
 // checker's decisions survive a resume); an unknown source is an error.
 TEST(CheckpointTest, LoopSourcesIdsAndScoresRoundTripAndBadSourcesAreRejected) {
-  CheckpointContents contents = Contents();
-  auto& constraints = contents.state.pose_graph.constraints;
-  ASSERT_FALSE(constraints.empty());
-  pose_graph::Constraint2D visual = constraints.back();
-  visual.tag = pose_graph::Constraint2D::kInterSubmap;
-  visual.source = pose_graph::Constraint2D::kVisual;
-  visual.loop_id = 41;
-  visual.laser_score = 0.625;
-  visual.rotation_weight = 98765.4321;
-  constraints.push_back(visual);
+  CheckpointContents contents = WithOneMoreConstraint([](pose_graph::Constraint2D* c) {
+    c->tag = pose_graph::Constraint2D::kInterSubmap;
+    c->source = pose_graph::Constraint2D::kVisual;
+    c->loop_id = 41;
+    c->laser_score = 0.625;
+    c->rotation_weight = 98765.4321;
+  });
+  const pose_graph::Constraint2D visual = contents.state.pose_graph.constraints.back();
   contents.state.pose_graph.next_loop_id = 42;
   const std::string bytes = EncodeCheckpoint(contents, false);
   CheckpointContents read;
@@ -198,14 +209,11 @@ TEST(CheckpointTest, LoopSourcesIdsAndScoresRoundTripAndBadSourcesAreRejected) {
 // A corridor loop closure keeps the direction it does not measure; a direction that is neither
 // zero nor a unit vector is an error.
 TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
-  CheckpointContents contents = Contents();
-  auto& constraints = contents.state.pose_graph.constraints;
-  ASSERT_FALSE(constraints.empty());
-  pose_graph::Constraint2D corridor = constraints.back();
-  corridor.tag = pose_graph::Constraint2D::kInterSubmap;
-  corridor.laser_score = 0.8125;
-  corridor.unmeasured_direction = Eigen::Vector2d(0.6, -0.8);
-  constraints.push_back(corridor);
+  const CheckpointContents contents = WithOneMoreConstraint([](pose_graph::Constraint2D* c) {
+    c->tag = pose_graph::Constraint2D::kInterSubmap;
+    c->laser_score = 0.8125;
+    c->unmeasured_direction = Eigen::Vector2d(0.6, -0.8);
+  });
   const std::string bytes = EncodeCheckpoint(contents, false);
   CheckpointContents read;
   std::string error;
