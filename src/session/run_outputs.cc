@@ -202,8 +202,7 @@ bool WriteRunOutputs(const RunOutputs& run, const std::string& dir, RunOutputsRe
   }
   const std::vector<sensor::OdometryData>& odometry =
       run.archive != nullptr ? archived_odometry : *run.odometry;
-  const auto dense = pose_graph::DensifyWithOdometry(
-      nodes, odometry, run.odometry_breaks_s != nullptr ? *run.odometry_breaks_s : std::vector<double>());
+  const auto dense = pose_graph::DensifyWithOdometry(nodes, odometry, run.odometry_breaks_s);
   std::vector<pose_graph::MapBuilder2D::TimedPose2d> raw_odometry;
   for (const auto& o : odometry) raw_odometry.push_back({o.stamp_s, o.pose});
   const std::string out = dir + "/";

@@ -138,7 +138,7 @@ bool SlamSession::WriteOutputs(const std::string& dir, RunOutputsReport* report,
   RunOutputs run;
   run.builder = builder_.get();
   run.odometry = &odometry_;
-  run.odometry_breaks_s = &odometry_breaks_s_;
+  run.odometry_breaks_s = odometry_breaks_s_;
   run.map_resolution_m = config_.map_builder.local_slam.submaps.resolution_m;
   run.cloud_mapper = cloud_stage_ ? &cloud_stage_->mapper() : nullptr;
   run.archive = archive_.get();

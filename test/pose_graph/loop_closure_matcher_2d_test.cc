@@ -130,7 +130,8 @@ TEST(LoopClosureMatcher2DTest, ACorridorMatchHoldsTheNodeAcrossTheCorridorOnly) 
       common::Rigid2d(T_world_node.translation() + Eigen::Vector2d(0.5, 0.2), 0.05);
   const sensor::PointCloud2d cloud = LoopClosureCloud(SimulateRangeData(Corridor(), T_world_node));
   // The corridor's axis, in the submap frame.
-  const Eigen::Vector2d axis = submap->T_local_submap().rotation().inverse() * Eigen::Vector2d::UnitX();
+  const Eigen::Vector2d axis =
+      submap->T_local_submap().rotation().inverse() * Eigen::Vector2d::UnitX();
 
   ConstraintBuilderOptions2D every_way;
   every_way.min_translation_information_ratio = 0.0;

@@ -82,8 +82,8 @@ class Submap2D {
   // Finished submaps only: from now on the cells are held deflated (mapping/deflated_cells.h,
   // lossless) and grid() inflates a copy per call. For submaps that are read rarely: global
   // SLAM keeps every finished submap for the whole run but reads one only to build its
-  // precomputation grids, to refine a loop closure match, to trim and to draw the map. Any thread may call it while others
-  // call grid(); grids handed out before stay valid.
+  // precomputation grids, to refine a loop closure match, to trim and to draw the map. Any
+  // thread may call it while others call grid(); grids handed out before stay valid.
   void Compact() const;
   bool compacted() const;
 

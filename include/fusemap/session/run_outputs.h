@@ -22,8 +22,8 @@ struct RunOutputs {
   const pose_graph::MapBuilder2D* builder = nullptr;  // idle: after Finish()
   // In arrival order without samples that went back in time.
   const std::vector<sensor::OdometryData>* odometry = nullptr;
-  // Optional: where the odometry restarts (pose_graph::DensifyWithOdometry's breaks_s).
-  const std::vector<double>* odometry_breaks_s = nullptr;
+  // Where the odometry restarts (pose_graph::DensifyWithOdometry's breaks_s); a few stamps.
+  std::vector<double> odometry_breaks_s;
   double map_resolution_m = 0.05;
   // Optional (null: no cloud outputs); after Finish(). Cloud files are written only if it
   // bound at least one frame.
