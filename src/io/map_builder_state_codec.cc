@@ -119,6 +119,7 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->U64(node.inserted_into.size());
     for (int s : node.inserted_into) out->I32(s);
     out->U8(node.trimmed ? 1 : 0);
+    out->F64(node.path_m);
   }
   out->U64(g.submaps.size());
   for (const auto& s : g.submaps) {
@@ -126,6 +127,8 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     out->U8(s.trimmed ? 1 : 0);
     out->U8(s.matcher_ready ? 1 : 0);
     out->I64(s.sampler_pulses);
+    out->F64(s.first_path_m);
+    out->F64(s.last_path_m);
   }
   out->U64(g.T_map_nodes.size());
   for (const auto& T : g.T_map_nodes) EncodeRigid2d(T, out);
@@ -180,6 +183,12 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
       in->Fail("node indices are not increasing within the nodes added");
       return false;
     }
+    // The path travelled only grows from node to node; NaN fails too.
+    if (!(g.nodes[n].path_m >= (n == 0 ? 0.0 : g.nodes[n - 1].path_m)) ||
+        !std::isfinite(g.nodes[n].path_m)) {
+      in->Fail("node paths travelled are not increasing");
+      return false;
+    }
   }
   // Constraints and searches name nodes by index; a trimmed node may have left the graph.
   const auto held_node = [&g](int node) {
@@ -210,6 +219,12 @@ bool CheckInvariants(const pose_graph::MapBuilderState2D& state, ByteReader* in)
     }
     if (g.submaps[s].finished != state.submaps[s].finished) {
       in->Fail("submap " + std::to_string(s) + " finished flags disagree");
+      return false;
+    }
+    // Path lengths only grow along the trajectory; NaN fails too.
+    if (!(g.submaps[s].last_path_m >= g.submaps[s].first_path_m) ||
+        !std::isfinite(g.submaps[s].last_path_m)) {
+      in->Fail("submap " + std::to_string(s) + " path range is invalid");
       return false;
     }
     if (g.submaps[s].trimmed && !g.submaps[s].finished) {
@@ -253,7 +268,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   *state = pose_graph::MapBuilderState2D();
   // Minimum encoded sizes of list elements, for Count's allocation guard.
   constexpr size_t kSubmapBytes = 1;  // a trimmed one
-  constexpr size_t kNodeBytes = 4 + 8 + 24 + 8 + 8 + 1;
+  constexpr size_t kNodeBytes = 4 + 8 + 24 + 8 + 8 + 1 + 8;
   size_t n = 0;
   if (!in->Count(kSubmapBytes, &n)) return false;
   state->submaps.resize(n);
@@ -282,15 +297,16 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     for (int& s : node.inserted_into) {
       if (!in->I32(&s)) return false;
     }
-    if (!in->Bool(&node.trimmed)) return false;
+    if (!in->Bool(&node.trimmed) || !in->F64(&node.path_m)) return false;
   }
-  if (!in->Count(11, &n)) return false;
+  if (!in->Count(27, &n)) return false;
   g.submaps.resize(n);
   for (size_t s = 0; s < n; ++s) {
     pose_graph::PoseGraphState2D::Submap& submap = g.submaps[s];
     int64_t pulses = 0;
     if (!in->Bool(&submap.finished) || !in->Bool(&submap.trimmed) ||
-        !in->Bool(&submap.matcher_ready) || !in->I64(&pulses)) {
+        !in->Bool(&submap.matcher_ready) || !in->I64(&pulses) ||
+        !in->F64(&submap.first_path_m) || !in->F64(&submap.last_path_m)) {
       return false;
     }
     submap.sampler_pulses = static_cast<long>(pulses);

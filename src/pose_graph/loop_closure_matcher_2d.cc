@@ -28,6 +28,8 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
   check->Require(
       min_translation_information_ratio >= 0.0 && min_translation_information_ratio <= 1.0,
       "min_translation_information_ratio", "must be in [0, 1]");
+  check->Require(max_correction_m >= 0.0, "max_correction_m", "must be >= 0");
+  check->Require(max_correction_per_path_m >= 0.0, "max_correction_per_path_m", "must be >= 0");
   check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
 }
@@ -43,6 +45,8 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   reader.Get("loop_closure_translation_weight", &options.loop_closure_translation_weight);
   reader.Get("loop_closure_rotation_weight", &options.loop_closure_rotation_weight);
   reader.Get("min_translation_information_ratio", &options.min_translation_information_ratio);
+  reader.Get("max_correction_m", &options.max_correction_m);
+  reader.Get("max_correction_per_path_m", &options.max_correction_per_path_m);
   options.fast_correlative_scan_matcher = mapping::ParseFastCorrelativeScanMatcherOptions2D(
       reader.Child("fast_correlative_scan_matcher"));
   if (reader.Has("ceres_scan_matcher")) {
@@ -51,6 +55,15 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   }
   reader.CheckOptions(options);
   return options;
+}
+
+bool DriftExplainsCorrection(const common::Rigid2d& T_submap_node_estimate,
+                             const common::Rigid2d& T_submap_node_match, double path_m,
+                             const ConstraintBuilderOptions2D& options) {
+  if (options.max_correction_m == 0.0) return true;
+  const double correction_m =
+      (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
+  return correction_m <= options.max_correction_m + options.max_correction_per_path_m * path_m;
 }
 
 LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,

@@ -103,13 +103,23 @@ int PoseGraph2D::AddNode(
     // SLAM (it keeps a finished submap for one more scan): see below.
     const std::vector<int> previous_inserted_into =
         nodes_.empty() ? std::vector<int>() : nodes_.back().inserted_into;
-    nodes_.push_back({node, stamp_s, T_local_node, filtered_cloud, {}, false});
+    // The newest node is never trimmed (it is in the active submap), so nodes_.back() is the
+    // previous node.
+    const double path_m =
+        nodes_.empty() ? 0.0
+                       : nodes_.back().path_m + (T_local_node.translation() -
+                                                 nodes_.back().T_local_node.translation())
+                                                    .norm();
+    nodes_.push_back({node, stamp_s, T_local_node, filtered_cloud, {}, false, path_m});
     T_map_nodes_.push_back(T_map_local * T_local_node);
     ++stats_.nodes;
 
     for (const auto& submap : insertion_submaps) {
       const int s = SubmapIndexLocked(submap, T_map_local);
       nodes_.back().inserted_into.push_back(s);
+      SubmapData& submap_data = submaps_[s];
+      if (submap_data.first_path_m < 0.0) submap_data.first_path_m = path_m;
+      submap_data.last_path_m = path_m;
       Constraint2D constraint;
       constraint.submap = s;
       constraint.node = node;
@@ -160,6 +170,14 @@ int PoseGraph2D::AddNode(
   // Scheduled outside the lock: an inline executor runs the task right here.
   for (auto& task : tasks) executor_->Schedule(std::move(task));
   return node;
+}
+
+double PoseGraph2D::PathBetweenLocked(int node, int submap) const {
+  const double path_m = nodes_[SlotLocked(node)].path_m;
+  const SubmapData& data = submaps_[submap];
+  if (path_m < data.first_path_m) return data.first_path_m - path_m;
+  if (path_m > data.last_path_m) return path_m - data.last_path_m;
+  return 0.0;
 }
 
 void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
@@ -216,6 +234,12 @@ std::function<void()> PoseGraph2D::SearchTaskLocked(std::uint64_t id,
     ++stats_.loop_closure_searches;
     // The trimmer may have dropped either end while the search ran.
     if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
+    if (!DriftExplainsCorrection(search.T_submap_node, constraint->T_submap_node,
+                                 PathBetweenLocked(search.node, search.submap),
+                                 options_.constraint_builder)) {
+      ++stats_.loop_closures_beyond_drift;
+      return;
+    }
     constraint->submap = search.submap;
     constraint->node = search.node;
     constraint->laser_score = score;

@@ -16,12 +16,13 @@ PoseGraphState2D PoseGraph2D::ExportState(
   for (const auto& node : nodes_) {
     state.nodes.push_back(
         {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
-         node.trimmed});
+         node.trimmed, node.path_m});
   }
   for (const auto& submap : submaps_) {
     submaps->push_back(submap.submap);
     state.submaps.push_back(
-        {submap.finished, submap.trimmed, submap.searchable, submap.sampler_pulses});
+        {submap.finished, submap.trimmed, submap.searchable, submap.sampler_pulses,
+         submap.first_path_m, submap.last_path_m});
   }
   state.T_map_nodes = T_map_nodes_;
   state.T_map_submaps = T_map_submaps_;
@@ -49,7 +50,7 @@ void PoseGraph2D::RestoreState(
     for (const auto& node : state.nodes) {
       nodes_.push_back(
           {node.index, node.stamp_s, node.T_local_node, node.cloud, node.inserted_into,
-           node.trimmed});
+           node.trimmed, node.path_m});
     }
     for (size_t s = 0; s < submaps.size(); ++s) {
       SubmapData data;
@@ -61,6 +62,8 @@ void PoseGraph2D::RestoreState(
       // The sampler is deterministic in its pulse count, so replaying the pulses restores it.
       for (long i = 0; i < state.submaps[s].sampler_pulses; ++i) data.sampler.Pulse();
       data.sampler_pulses = state.submaps[s].sampler_pulses;
+      data.first_path_m = state.submaps[s].first_path_m;
+      data.last_path_m = state.submaps[s].last_path_m;
       if (!data.trimmed) submap_index_[submaps[s].get()] = static_cast<int>(s);
       submaps_.push_back(std::move(data));
     }

@@ -237,6 +237,32 @@ TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
   EXPECT_NE(error.find("unmeasured direction"), std::string::npos) << error;
 }
 
+// The path travelled at each node and each submap's range of it (the loop-closure drift bound)
+// round-trip; a path that shrinks from node to node, or a submap range that ends before it
+// starts, is an error.
+TEST(CheckpointTest, PathsTravelledRoundTripAndShrinkingOnesAreRejected) {
+  const CheckpointContents& contents = Contents();
+  const auto& nodes = contents.state.pose_graph.nodes;
+  ASSERT_GE(nodes.size(), 2u);
+  EXPECT_GT(nodes.back().path_m, nodes.front().path_m);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(EncodeCheckpoint(contents, false), "ckpt", &read, &error)) << error;
+  EXPECT_EQ(read.state.pose_graph.nodes.back().path_m, nodes.back().path_m);
+  EXPECT_EQ(read.state.pose_graph.submaps.back().last_path_m,
+            contents.state.pose_graph.submaps.back().last_path_m);
+
+  CheckpointContents shrinking = contents;
+  shrinking.state.pose_graph.nodes[1].path_m = -1.0;
+  EXPECT_FALSE(DecodeCheckpoint(EncodeCheckpoint(shrinking, false), "ckpt", &read, &error));
+  EXPECT_NE(error.find("paths travelled"), std::string::npos) << error;
+  CheckpointContents backwards = contents;
+  auto& submap = backwards.state.pose_graph.submaps.front();
+  submap.last_path_m = submap.first_path_m - 1.0;
+  EXPECT_FALSE(DecodeCheckpoint(EncodeCheckpoint(backwards, false), "ckpt", &read, &error));
+  EXPECT_NE(error.find("path range"), std::string::npos) << error;
+}
+
 TEST(CheckpointTest, ArchivedNodesOdometryAndArchiveMarkRoundTrip) {
   CheckpointContents contents = MakeContents(true);
   // What the daemon does before each save: trimmed nodes leave the graph.

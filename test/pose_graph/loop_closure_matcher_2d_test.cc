@@ -167,6 +167,24 @@ TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {
   EXPECT_EQ(score, 0.0);
 }
 
+// A match moving the node 3 m from the estimate: drift does not explain it after 25 m of travel
+// (bound 0.5 m + 0.02 x 25 m), it does after 150 m (3.5 m); with max_correction_m 0 anything goes.
+TEST(DriftExplainsCorrectionTest, TheBoundGrowsWithThePathBetween) {
+  ConstraintBuilderOptions2D options;
+  ASSERT_EQ(options.max_correction_m, 0.5);
+  ASSERT_EQ(options.max_correction_per_path_m, 0.02);
+  const common::Rigid2d estimate(Eigen::Vector2d(2.0, 1.0), 0.3);
+  const common::Rigid2d three_m_off(Eigen::Vector2d(2.0, 4.0), 0.3);
+  EXPECT_TRUE(DriftExplainsCorrection(estimate, estimate, 0.0, options));
+  EXPECT_FALSE(DriftExplainsCorrection(estimate, three_m_off, 25.0, options));
+  EXPECT_TRUE(DriftExplainsCorrection(estimate, three_m_off, 150.0, options));
+  // Only translation: the angular search window already bounds the turn.
+  const common::Rigid2d turned(Eigen::Vector2d(2.0, 1.0), 0.6);
+  EXPECT_TRUE(DriftExplainsCorrection(estimate, turned, 0.0, options));
+  options.max_correction_m = 0.0;
+  EXPECT_TRUE(DriftExplainsCorrection(estimate, three_m_off, 0.0, options));
+}
+
 TEST(FixedRatioSamplerTest, PassesExpectedFraction) {
   for (const double ratio : {0.0, 0.1, 0.3, 0.5, 1.0}) {
     FixedRatioSampler sampler(ratio);
@@ -190,6 +208,10 @@ TEST(ConstraintBuilderOptions2DTest, RejectsBadOptions) {
   options.sampling_ratio = 0.3;
   options.max_constraint_distance_m = 0.0;
   EXPECT_FALSE(options.IsValid(&error));
+  options.max_constraint_distance_m = 15.0;
+  options.max_correction_per_path_m = -0.1;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("max_correction_per_path_m"), std::string::npos) << error;
 }
 
 }  // namespace

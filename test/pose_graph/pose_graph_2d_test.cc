@@ -224,6 +224,28 @@ TEST(PoseGraph2DTest, SearchesBeyondTheQueueCapAreSkippedAndCounted) {
   EXPECT_LT(run.stats.loop_closure_searches, unbounded.stats.loop_closure_searches);
 }
 
+// The drive's local SLAM drifts > 0.3 m over the lap. Allowed no more correction than 2 cm, the
+// closures at the lap's end (which ask for the drift back) are refused and counted, and the
+// loop stays open; the default bound (0.5 m + 2 % of the path) lets them all through.
+TEST(PoseGraph2DTest, LoopClosuresBeyondDriftAreRefusedAndCounted) {
+  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  common::InlineExecutor executor;
+  const RunResult defaults = RunGraph(num_nodes, TestOptions(10), &executor);
+  PoseGraphOptions2D strict = TestOptions(10);
+  strict.constraint_builder.max_correction_m = 0.02;
+  strict.constraint_builder.max_correction_per_path_m = 0.0;
+  const RunResult run = RunGraph(num_nodes, strict, &executor);
+  std::printf("loop closures %d (default bound) vs %d, %d beyond drift; end error %.3f vs %.3f m\n",
+              defaults.stats.loop_closures_found, run.stats.loop_closures_found,
+              run.stats.loop_closures_beyond_drift, EndErrorM(defaults.T_map_nodes),
+              EndErrorM(run.T_map_nodes));
+  EXPECT_EQ(defaults.stats.loop_closures_beyond_drift, 0);
+  EXPECT_LT(EndErrorM(defaults.T_map_nodes), 0.08);
+  EXPECT_GT(run.stats.loop_closures_beyond_drift, 0);
+  EXPECT_LT(run.stats.loop_closures_found, defaults.stats.loop_closures_found);
+  EXPECT_GT(EndErrorM(run.T_map_nodes), 0.2);
+}
+
 TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
   const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
   common::InlineExecutor executor;

@@ -127,6 +127,9 @@ class PoseGraph2D {
     // Loop closures found whose scan could slide along a corridor, held across it only
     // (constraint_builder.min_translation_information_ratio; not checkpointed).
     int loop_closures_degenerate = 0;
+    // Matches refused because they move the node further than drift explains
+    // (constraint_builder.max_correction_m; not checkpointed).
+    int loop_closures_beyond_drift = 0;
     // Loop-closure searches queued and not yet finished: now, and the most at any time since
     // the graph was made (not checkpointed).
     int pending_searches = 0;
@@ -243,6 +246,8 @@ class PoseGraph2D {
     sensor::PointCloud2d cloud;
     std::vector<int> inserted_into;
     bool trimmed = false;  // cloud and inserted_into released
+    // Path travelled in local SLAM's frame from the first node to this one.
+    double path_m = 0.0;
   };
   struct SubmapData {
     std::shared_ptr<const mapping::Submap2D> submap;
@@ -259,10 +264,15 @@ class PoseGraph2D {
     bool trimmed = false;  // submap and matcher released
     FixedRatioSampler sampler{0.0};
     long sampler_pulses = 0;  // lets a restored sampler be replayed to the same state
+    // NodeData::path_m of the first (-1 before it) and the last node inserted into it.
+    double first_path_m = -1.0;
+    double last_path_m = 0.0;
   };
 
   int SubmapIndexLocked(const std::shared_ptr<const mapping::Submap2D>& submap,
                         const common::Rigid2d& T_map_local);
+  // Path travelled between node `node` (held) and the nearest node inserted into `submap`.
+  double PathBetweenLocked(int node, int submap) const;
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
   void QueueSearchLocked(const PendingSearch2D& search);
@@ -343,12 +353,15 @@ struct PoseGraphState2D {
     sensor::PointCloud2d cloud;
     std::vector<int> inserted_into;
     bool trimmed = false;
+    double path_m = 0.0;
   };
   struct Submap {
     bool finished = false;
     bool trimmed = false;  // its grid is gone (MapBuilderState2D holds an empty one)
     bool matcher_ready = false;  // precomputed, and the searches of all nodes were queued
     long sampler_pulses = 0;
+    double first_path_m = -1.0;
+    double last_path_m = 0.0;
   };
   std::vector<Node> nodes;
   std::vector<Submap> submaps;
