@@ -27,6 +27,9 @@ constexpr double kStepM = 0.15;
 
 common::Rigid2d TruePose(int i) { return test_world::ArcPose(i, kStepM); }
 
+// 1.1 turns of the arc: the end revisits the start.
+constexpr int kLapAndATenthNodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+
 PoseGraphOptions2D TestOptions(int optimize_every_n_nodes) {
   PoseGraphOptions2D options;
   options.optimize_every_n_nodes = optimize_every_n_nodes;
@@ -117,8 +120,7 @@ TEST(PoseGraph2DTest, LocalOnlyKeepsLocalPosesAndSearchesNothing) {
 }
 
 TEST(PoseGraph2DTest, LoopClosureReducesDrift) {
-  // 1.1 turns: the end revisits the start.
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::InlineExecutor executor;
   const RunResult run = RunGraph(num_nodes, 10, &executor);
   const double drift_m = EndErrorM(run.T_local_nodes);
@@ -155,7 +157,7 @@ TEST(PoseGraph2DTest, SubmapPlacementsFollowEveryOptimisation) {
 
 // A 1.1-turn drive on a thread pool: every search finished, the loop closed.
 RunResult ExpectThreadPoolRunClosesTheLoop(const PoseGraphOptions2D& options) {
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::ThreadPool pool(2);
   const RunResult run = RunGraph(num_nodes, options, &pool);
   EXPECT_EQ(run.stats.nodes, num_nodes);
@@ -176,7 +178,7 @@ TEST(PoseGraph2DTest, ThreadPoolRunFindsLoopClosures) {
 }
 
 TEST(PoseGraph2DTest, MatcherMemoryBudgetChangesWhenSearchesRunNotWhatTheyFind) {
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::InlineExecutor executor;
   const RunResult unbounded = RunGraph(num_nodes, TestOptions(10), &executor);
   PoseGraphOptions2D tight = TestOptions(10);
@@ -209,7 +211,7 @@ TEST(PoseGraph2DTest, ThreadPoolRunWithinATinyMatcherBudgetClosesTheLoop) {
 }
 
 TEST(PoseGraph2DTest, SearchesBeyondTheQueueCapAreSkippedAndCounted) {
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::InlineExecutor executor;
   const RunResult unbounded = RunGraph(num_nodes, TestOptions(10), &executor);
   PoseGraphOptions2D capped = TestOptions(10);
@@ -228,7 +230,7 @@ TEST(PoseGraph2DTest, SearchesBeyondTheQueueCapAreSkippedAndCounted) {
 // closures at the lap's end (which ask for the drift back) are refused and counted, and the
 // loop stays open; the default bound (0.5 m + 2 % of the path) lets them all through.
 TEST(PoseGraph2DTest, LoopClosuresBeyondDriftAreRefusedAndCounted) {
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::InlineExecutor executor;
   const RunResult defaults = RunGraph(num_nodes, TestOptions(10), &executor);
   PoseGraphOptions2D strict = TestOptions(10);
@@ -247,7 +249,7 @@ TEST(PoseGraph2DTest, LoopClosuresBeyondDriftAreRefusedAndCounted) {
 }
 
 TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
-  const int num_nodes = static_cast<int>(1.1 * 2.0 * common::kPi * kArcRadiusM / kStepM);
+  const int num_nodes = kLapAndATenthNodes;
   common::InlineExecutor executor;
   PoseGraphOptions2D options = TestOptions(10);
   options.loop_closure_verification.min_agreeing_closures = 2;
