@@ -19,6 +19,15 @@ float ValueToProbability(uint16_t value) {
          (kMaxProbability - kMinProbability) * static_cast<float>(value - 1) / (kMaxValue - 1);
 }
 
+std::vector<float> ComputeValueToProbabilityTable(float unknown_probability) {
+  std::vector<float> table(kMaxValue + 1);
+  table[kUnknownValue] = unknown_probability;
+  for (int value = 1; value <= kMaxValue; ++value) {
+    table[value] = ValueToProbability(static_cast<uint16_t>(value));
+  }
+  return table;
+}
+
 std::vector<uint16_t> ComputeLookupTableToApplyOdds(float odds) {
   std::vector<uint16_t> table(2 * (kMaxValue + 1), 0);
   // First observation of an unknown cell takes the observation's probability itself.

@@ -41,7 +41,9 @@ RealTimeCorrelativeScanMatcherOptions2D ParseRealTimeCorrelativeScanMatcherOptio
 
 RealTimeCorrelativeScanMatcher2D::RealTimeCorrelativeScanMatcher2D(
     const RealTimeCorrelativeScanMatcherOptions2D& options)
-    : options_(options) {
+    : options_(options),
+      probability_of_value_(
+          ComputeValueToProbabilityTable(static_cast<float>(options.unknown_probability))) {
   std::string error;
   assert(options_.IsValid(&error));
   (void)error;
@@ -70,24 +72,54 @@ double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_po
       DiscretizeScans(grid.limits(), GenerateRotatedScans(rotated_cloud, params),
                       initial_pose.translation().cast<float>());
 
+  // Each candidate's sum is grid.GetProbabilityOr(cell + offset, unknown_probability) over the
+  // scan's cells in order, read through the table with all offsets of one cell together (they
+  // lie in a few neighbouring rows): this loop is most of local SLAM's time.
   const float unknown_probability = static_cast<float>(options_.unknown_probability);
+  const MapLimits& limits = grid.limits();
+  const uint16_t* const cells = grid.cells().data();
+  const float* const probability_of_value = probability_of_value_.data();
+  constexpr uint16_t kValueMask = static_cast<uint16_t>(~kUpdateMarker);
+  std::vector<double> sums;
   bool have_best = false;
   Candidate2D best(params.num_angular_perturbations, 0, 0, params);
   for (int i = 0; i < params.num_scans; ++i) {
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
+    const int size_x = bounds.max_x - bounds.min_x + 1;
+    const int size_y = bounds.max_y - bounds.min_y + 1;
+    sums.assign(static_cast<size_t>(size_x) * size_y, 0.0);  // index (dx - min_x) * size_y + dy - min_y
+    for (const Eigen::Array2i& scan_cell : scans[i]) {
+      const Eigen::Array2i low = scan_cell + Eigen::Array2i(bounds.min_x, bounds.min_y);
+      const Eigen::Array2i high = scan_cell + Eigen::Array2i(bounds.max_x, bounds.max_y);
+      double* sum = sums.data();
+      if (limits.Contains(low) && limits.Contains(high)) {
+        const uint16_t* const first = cells + limits.FlatIndex(low);
+        for (int x = 0; x < size_x; ++x) {
+          for (int y = 0; y < size_y; ++y) {
+            *sum++ += probability_of_value[first[y * limits.num_x_cells + x] & kValueMask];
+          }
+        }
+        continue;
+      }
+      for (int x = 0; x < size_x; ++x) {
+        for (int y = 0; y < size_y; ++y) {
+          const Eigen::Array2i cell = low + Eigen::Array2i(x, y);
+          *sum++ += limits.Contains(cell)
+                        ? probability_of_value[cells[limits.FlatIndex(cell)] & kValueMask]
+                        : unknown_probability;
+        }
+      }
+    }
+    const double* sum = sums.data();
     for (int dx = bounds.min_x; dx <= bounds.max_x; ++dx) {
       for (int dy = bounds.min_y; dy <= bounds.max_y; ++dy) {
         Candidate2D candidate(i, dx, dy, params);
-        const Eigen::Array2i offset(dx, dy);
-        double sum = 0.0;
-        for (const Eigen::Array2i& cell : scans[i]) {
-          sum += grid.GetProbabilityOr(cell + offset, unknown_probability);
-        }
         // Cartographer's prior on the distance from the prediction.
         const double penalty =
             std::hypot(candidate.x_m, candidate.y_m) * options_.translation_delta_cost_weight +
             std::abs(candidate.angle_rad) * options_.rotation_delta_cost_weight;
-        candidate.score = sum / static_cast<double>(scans[i].size()) * std::exp(-penalty * penalty);
+        candidate.score =
+            *sum++ / static_cast<double>(scans[i].size()) * std::exp(-penalty * penalty);
         if (!have_best || candidate > best) {
           best = candidate;
           have_best = true;

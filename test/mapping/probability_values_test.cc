@@ -63,6 +63,15 @@ TEST(ProbabilityValuesTest, RepeatedHitsClampAtMaxAndMissesAtMin) {
   EXPECT_EQ(value, 1);  // known, at the floor
 }
 
+TEST(ProbabilityValuesTest, ValueToProbabilityTableReadsUnknownAsGiven) {
+  const std::vector<float> table = ComputeValueToProbabilityTable(0.5f);
+  ASSERT_EQ(table.size(), static_cast<size_t>(kMaxValue) + 1);
+  EXPECT_EQ(table[kUnknownValue], 0.5f);
+  for (int value = 1; value <= kMaxValue; ++value) {
+    ASSERT_EQ(table[value], ValueToProbability(static_cast<uint16_t>(value))) << value;
+  }
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

@@ -115,6 +115,36 @@ TEST(RealTimeCorrelativeScanMatcher2DTest, NewSpaceCountsAsNoEvidence) {
   EXPECT_LT(pose.x(), -0.5);
 }
 
+// Cells off the grid read as unknown: a scan reaching past the grid's edge (the matcher's
+// checked path) scores as it does on a larger grid where those cells are unknown (its
+// unchecked path), so the two give the same match.
+TEST(RealTimeCorrelativeScanMatcher2DTest, CellsOffTheGridScoreAsUnknownCells) {
+  const ProbabilityGrid large = test_world::DrawWalls(MakeRoomGrid().limits(),
+                                                      test_world::SmallRoomWalls(), 0.2);
+  const ProbabilityGrid cropped = large.Cropped();
+  ASSERT_LT(cropped.limits().num_x_cells, large.limits().num_x_cells);
+  const common::Rigid2d truth(-1.0, -0.5, 0.3);
+  sensor::PointCloud2d cloud = CastScan(truth, 180);
+  // Through an open door: returns 0.5 m beyond the east wall, off the cropped grid.
+  for (int i = 0; i < 20; ++i) {
+    cloud.push_back((truth.inverse() * Eigen::Vector2d(4.5, -1.0 + 0.1 * i)).cast<float>());
+  }
+  RealTimeCorrelativeScanMatcherOptions2D options;
+  options.unknown_probability = 0.3;
+  const RealTimeCorrelativeScanMatcher2D matcher(options);
+  const common::Rigid2d start(truth.x() + 0.04, truth.y() - 0.03, truth.angle_rad() + 0.02);
+  common::Rigid2d on_large;
+  common::Rigid2d on_cropped;
+  const double large_score = matcher.Match(start, cloud, large, &on_large);
+  const double cropped_score = matcher.Match(start, cloud, cropped, &on_cropped);
+  EXPECT_DOUBLE_EQ(cropped_score, large_score);
+  EXPECT_DOUBLE_EQ(on_cropped.x(), on_large.x());
+  EXPECT_DOUBLE_EQ(on_cropped.y(), on_large.y());
+  EXPECT_DOUBLE_EQ(on_cropped.angle_rad(), on_large.angle_rad());
+  EXPECT_NEAR(on_large.x(), truth.x(), 0.026);
+  EXPECT_NEAR(on_large.y(), truth.y(), 0.026);
+}
+
 TEST(RealTimeCorrelativeScanMatcher2DTest, EmptyCloudReturnsInitialPose) {
   const ProbabilityGrid grid = MakeRoomGrid();
   RealTimeCorrelativeScanMatcher2D matcher(RealTimeCorrelativeScanMatcherOptions2D{});

@@ -25,6 +25,10 @@ uint16_t ProbabilityToValue(float probability);
 // Inverse of ProbabilityToValue; kUnknownValue maps to kMinProbability, the value the scan
 // matchers assume for cells never observed.
 float ValueToProbability(uint16_t value);
+// ValueToProbability for every stored value (bit 15 masked off by the caller), except that
+// kUnknownValue maps to `unknown_probability`: a scan matcher scores millions of cells per
+// scan, and one load is much cheaper than the conversion. Size kMaxValue + 1.
+std::vector<float> ComputeValueToProbabilityTable(float unknown_probability);
 
 // Table indexed by the current stored value (unknown included) giving the value after one
 // observation with the given odds, with kUpdateMarker set. Entries for marked values are

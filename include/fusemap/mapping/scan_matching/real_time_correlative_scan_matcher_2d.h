@@ -2,6 +2,7 @@
 #define FUSEMAP_MAPPING_SCAN_MATCHING_REAL_TIME_CORRELATIVE_SCAN_MATCHER_2D_H_
 
 #include <string>
+#include <vector>
 
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/math.h"
@@ -52,6 +53,8 @@ class RealTimeCorrelativeScanMatcher2D {
 
  private:
   RealTimeCorrelativeScanMatcherOptions2D options_;
+  // Probability of each stored cell value, unknown_probability for unknown cells.
+  std::vector<float> probability_of_value_;
 };
 
 }  // namespace mapping
