@@ -83,10 +83,21 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
   sensor::PointCloud2d rotated_cloud;
   rotated_cloud.reserve(cloud.size());
   for (const Eigen::Vector2f& point : cloud) rotated_cloud.push_back(rotation * point);
-  const std::vector<DiscreteScan2D> scans =
-      DiscretizeScans(limits_, GenerateRotatedScans(rotated_cloud, params),
-                      initial_pose.translation().cast<float>());
-  params.ShrinkToFit(scans, limits_);
+  ScanSet scans;
+  scans.scans = DiscretizeScans(limits_, GenerateRotatedScans(rotated_cloud, params),
+                                initial_pose.translation().cast<float>());
+  params.ShrinkToFit(scans.scans, limits_);
+  for (const DiscreteScan2D& scan : scans.scans) {
+    Eigen::Array2i min_cell = Eigen::Array2i::Zero();
+    Eigen::Array2i max_cell = Eigen::Array2i::Zero();
+    if (!scan.empty()) min_cell = max_cell = scan.front();
+    for (const Eigen::Array2i& cell : scan) {
+      min_cell = min_cell.min(cell);
+      max_cell = max_cell.max(cell);
+    }
+    scans.min_cells.push_back(min_cell);
+    scans.max_cells.push_back(max_cell);
+  }
 
   const std::vector<Candidate2D> lowest_resolution_candidates =
       ComputeLowestResolutionCandidates(scans, params, with_prior);
@@ -107,8 +118,7 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 }
 
 std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCandidates(
-    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
-    bool with_prior) const {
+    const ScanSet& scans, const SearchParameters& params, bool with_prior) const {
   const int step = grids_.Get(grids_.max_depth()).width_cells();
   std::vector<Candidate2D> candidates;
   for (int i = 0; i < params.num_scans; ++i) {
@@ -124,19 +134,18 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
 }
 
 void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& grid,
-                                                   const std::vector<DiscreteScan2D>& scans,
-                                                   bool with_prior,
+                                                   const ScanSet& scans, bool with_prior,
                                                    std::vector<Candidate2D>* candidates) const {
   // Offset of the cell in [start, start + width) nearest to 0.
   const auto nearest_cells = [](int start, int width) {
     return start > 0 ? start : (start + width - 1 < 0 ? start + width - 1 : 0);
   };
   for (Candidate2D& candidate : *candidates) {
-    const DiscreteScan2D& scan = scans[candidate.scan_index];
-    const Eigen::Array2i offset(candidate.x_offset_cells, candidate.y_offset_cells);
-    long sum = 0;
-    for (const Eigen::Array2i& cell : scan) sum += grid.GetValue(cell + offset);
-    candidate.score = PrecomputationScore(sum, static_cast<int>(scan.size()));
+    const int i = candidate.scan_index;
+    const long sum =
+        grid.SumValues(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
+                       Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells));
+    candidate.score = PrecomputationScore(sum, static_cast<int>(scans.scans[i].size()));
     if (!with_prior) continue;
     // The candidate stands for the offsets [x, x + width) x [y, y + width); the prior is
     // largest at the one nearest the centre, so score times that factor still bounds every
@@ -156,7 +165,7 @@ void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& g
 // the offsets [x, x + 2^d) x [y, y + 2^d) of its scan, and its depth-d score bounds theirs
 // (eq. 14), so a subtree whose bound does not beat the best leaf found so far is skipped.
 Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
-    const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
+    const ScanSet& scans, const SearchParameters& params,
     const std::vector<Candidate2D>& candidates, int depth, double min_score,
     bool with_prior) const {
   if (depth == 0) return candidates.front();  // sorted best first, never empty

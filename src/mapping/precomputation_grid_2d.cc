@@ -122,6 +122,39 @@ PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
   }
 }
 
+long PrecomputationGrid2D::SumValues(const std::vector<Eigen::Array2i>& cells,
+                                     const Eigen::Array2i& cells_min,
+                                     const Eigen::Array2i& cells_max,
+                                     const Eigen::Array2i& offset) const {
+  // Blocks are monotonic in the cell index, so the box's corner blocks bound every cell's.
+  const Eigen::Array2i low = cells_min + offset;
+  const Eigen::Array2i high = cells_max + offset;
+  const bool on_grid = (low.x() >> block_shift_) >= min_block_.x() &&
+                       (low.y() >> block_shift_) >= min_block_.y() &&
+                       (high.x() >> block_shift_) < min_block_.x() + size_x_ &&
+                       (high.y() >> block_shift_) < min_block_.y() + size_y_;
+  long sum = 0;
+  if (!on_grid) {
+    for (const Eigen::Array2i& cell : cells) sum += GetValue(cell + offset);
+    return sum;
+  }
+  const uint8_t* const values = values_.data();
+  if (block_shift_ == 0) {
+    const long base = static_cast<long>(offset.y() - min_block_.y()) * size_x_ +
+                      (offset.x() - min_block_.x());
+    for (const Eigen::Array2i& cell : cells) {
+      sum += values[base + static_cast<long>(cell.y()) * size_x_ + cell.x()];
+    }
+    return sum;
+  }
+  for (const Eigen::Array2i& cell : cells) {
+    const Eigen::Array2i shifted = cell + offset;
+    sum += values[static_cast<size_t>((shifted.y() >> block_shift_) - min_block_.y()) * size_x_ +
+                  ((shifted.x() >> block_shift_) - min_block_.x())];
+  }
+  return sum;
+}
+
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth) {
   assert(max_depth >= 0);
   grids_.reserve(max_depth + 1);

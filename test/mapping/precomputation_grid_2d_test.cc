@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <random>
+#include <vector>
 
 namespace fusemap {
 namespace mapping {
@@ -89,6 +90,40 @@ TEST(PrecomputationGrid2DTest, EveryDepthBoundsItsWindowAsDocumented) {
       }
     }
   }
+}
+
+// SumValues is the sum of GetValue at every depth, exact and blocked, wherever the scan's box
+// lands: inside the stored area (its unchecked path), across its edge, or off it.
+TEST(PrecomputationGrid2DTest, SumValuesIsTheSumOfGetValue) {
+  const ProbabilityGrid grid = MakeRandomGrid(60, 45, 7);
+  const PrecomputationGridStack2D stack(grid, 6);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<int> coordinate(0, 30);
+  std::vector<Eigen::Array2i> cells;
+  for (int i = 0; i < 40; ++i) cells.emplace_back(coordinate(rng), coordinate(rng) / 2);
+  Eigen::Array2i min_cell = cells.front();
+  Eigen::Array2i max_cell = cells.front();
+  for (const Eigen::Array2i& cell : cells) {
+    min_cell = min_cell.min(cell);
+    max_cell = max_cell.max(cell);
+  }
+  int checked_inside = 0;
+  for (int depth = 0; depth <= stack.max_depth(); ++depth) {
+    const PrecomputationGrid2D& level = stack.Get(depth);
+    for (int oy = -80; oy <= 60; oy += 7) {
+      for (int ox = -90; ox <= 70; ox += 9) {
+        const Eigen::Array2i offset(ox, oy);
+        long expected = 0;
+        for (const Eigen::Array2i& cell : cells) expected += level.GetValue(cell + offset);
+        ASSERT_EQ(level.SumValues(cells, min_cell, max_cell, offset), expected)
+            << "depth " << depth << " offset " << ox << " " << oy;
+        if (ox >= 0 && oy >= 0 && ox + max_cell.x() < 60 && oy + max_cell.y() < 45) {
+          ++checked_inside;
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked_inside, 10);
 }
 
 TEST(PrecomputationGrid2DTest, SingleOccupiedCellSpreadsBackwards) {

@@ -64,15 +64,21 @@ class FastCorrelativeScanMatcher2D {
   const PrecomputationGridStack2D& precomputation_grids() const { return grids_; }
 
  private:
+  // The rotated, discretised scans of one search, with each one's cell bounding box.
+  struct ScanSet {
+    std::vector<DiscreteScan2D> scans;
+    std::vector<Eigen::Array2i> min_cells;
+    std::vector<Eigen::Array2i> max_cells;
+  };
+
   bool MatchWithSearchParameters(SearchParameters params, const common::Rigid2d& initial_pose,
                                  const sensor::PointCloud2d& cloud, double min_score,
                                  bool with_prior, double* score, common::Rigid2d* pose) const;
   std::vector<Candidate2D> ComputeLowestResolutionCandidates(
-      const std::vector<DiscreteScan2D>& scans, const SearchParameters& params,
-      bool with_prior) const;
-  void ScoreCandidates(const PrecomputationGrid2D& grid, const std::vector<DiscreteScan2D>& scans,
-                       bool with_prior, std::vector<Candidate2D>* candidates) const;
-  Candidate2D BranchAndBound(const std::vector<DiscreteScan2D>& scans,
+      const ScanSet& scans, const SearchParameters& params, bool with_prior) const;
+  void ScoreCandidates(const PrecomputationGrid2D& grid, const ScanSet& scans, bool with_prior,
+                       std::vector<Candidate2D>* candidates) const;
+  Candidate2D BranchAndBound(const ScanSet& scans,
                              const SearchParameters& params,
                              const std::vector<Candidate2D>& candidates, int depth,
                              double min_score, bool with_prior) const;
