@@ -23,12 +23,17 @@ ProbabilityGrid::ProbabilityGrid(const MapLimits& limits, std::vector<uint16_t> 
     : limits_(limits), cells_(std::move(cells)) {
   assert(limits.num_x_cells >= 0 && limits.num_y_cells >= 0 && limits.resolution_m > 0);
   assert(cells_.size() == static_cast<size_t>(limits.num_x_cells) * limits.num_y_cells);
+  // Each row's first and last known cell bound the row (a wide search builds grids of
+  // millions of cells, most of them known).
   for (int y = 0; y < limits_.num_y_cells; ++y) {
-    for (int x = 0; x < limits_.num_x_cells; ++x) {
-      if (cells_[limits_.FlatIndex(Eigen::Array2i(x, y))] != kUnknownValue) {
-        ExtendKnownBounds(Eigen::Array2i(x, y));
-      }
-    }
+    const uint16_t* const row = cells_.data() + limits_.FlatIndex(Eigen::Array2i(0, y));
+    int first = 0;
+    while (first < limits_.num_x_cells && row[first] == kUnknownValue) ++first;
+    if (first == limits_.num_x_cells) continue;
+    int last = limits_.num_x_cells - 1;
+    while (row[last] == kUnknownValue) --last;
+    ExtendKnownBounds(Eigen::Array2i(first, y));
+    ExtendKnownBounds(Eigen::Array2i(last, y));
   }
 }
 

@@ -50,6 +50,22 @@ TEST(MaxPoolGridTest, FillsUnknownAndPads) {
                Eigen::Array2i(3, 3)).all());
 }
 
+TEST(MaxPoolGridTest, FactorOneCopiesTheKnownCellsAndPads) {
+  const ProbabilityGrid grid = SmallGrid();
+  const ProbabilityGrid copy = MaxPoolGrid(grid, 1, 0.5f, 2);
+  EXPECT_DOUBLE_EQ(copy.limits().resolution_m, 0.1);
+  EXPECT_EQ(copy.limits().num_x_cells, 5 + 4);
+  EXPECT_EQ(copy.limits().num_y_cells, 4 + 4);
+  for (int y = 0; y < 4; ++y) {
+    for (int x = 0; x < 5; ++x) {
+      const Eigen::Array2i cell(x, y);
+      const float expected = grid.IsKnown(cell) ? grid.GetProbability(cell) : 0.5f;
+      EXPECT_NEAR(copy.GetProbability(cell + 2), expected, 1e-3) << x << " " << y;
+    }
+  }
+  EXPECT_NEAR(copy.GetProbability(Eigen::Array2i(0, 0)), 0.5f, 1e-3);  // padding
+}
+
 // A submap of the synthetic room seen from `pose` (world frame = local frame).
 std::shared_ptr<Submap2D> RoomSubmap(const common::Rigid2d& pose) {
   auto submap = std::make_shared<Submap2D>(pose.translation().cast<float>(), 0.05);

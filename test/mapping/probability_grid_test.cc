@@ -123,6 +123,39 @@ TEST(ProbabilityGridTest, KnownBoundsFollowEveryWrite) {
   expect_bounds_as_scanned(restored, 6);
 }
 
+// A grid built from cell values (checkpoint restore, the wide search's pooled grid) finds its
+// known box from each row's first and last known cell.
+TEST(ProbabilityGridTest, GridFromCellsKnowsTheBoxOfItsKnownCells) {
+  MapLimits limits = SmallLimits();
+  std::vector<uint16_t> cells(static_cast<size_t>(limits.num_x_cells) * limits.num_y_cells,
+                              kUnknownValue);
+  const auto set = [&](int x, int y) {
+    cells[limits.FlatIndex(Eigen::Array2i(x, y))] = ProbabilityToValue(0.7f);
+  };
+  {
+    const ProbabilityGrid empty(limits, cells);
+    Eigen::Array2i lo, hi;
+    EXPECT_FALSE(empty.ComputeKnownBounds(&lo, &hi));
+  }
+  set(5, 4);   // a row with one known cell
+  set(3, 9);   // a row with known cells at both ends, unknown between
+  set(11, 9);
+  set(8, 12);
+  const ProbabilityGrid grid(limits, cells);
+  Eigen::Array2i lo, hi;
+  ASSERT_TRUE(grid.ComputeKnownBounds(&lo, &hi));
+  EXPECT_EQ(lo.x(), 3);
+  EXPECT_EQ(lo.y(), 4);
+  EXPECT_EQ(hi.x(), 11);
+  EXPECT_EQ(hi.y(), 12);
+  set(0, 0);
+  set(limits.num_x_cells - 1, limits.num_y_cells - 1);
+  const ProbabilityGrid corners(limits, cells);
+  ASSERT_TRUE(corners.ComputeKnownBounds(&lo, &hi));
+  EXPECT_TRUE((lo == Eigen::Array2i(0, 0)).all());
+  EXPECT_TRUE((hi == Eigen::Array2i(limits.num_x_cells - 1, limits.num_y_cells - 1)).all());
+}
+
 TEST(ProbabilityGridTest, GrowIsANoOpForInteriorPoints) {
   ProbabilityGrid grid(SmallLimits());
   grid.GrowLimits(Eigen::Vector2f(0.f, 0.f));
