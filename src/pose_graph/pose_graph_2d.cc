@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 
 #include "fusemap/pose_graph/sparse_pose_adjustment_2d.h"
 
@@ -172,12 +173,45 @@ int PoseGraph2D::AddNode(
   return node;
 }
 
+namespace {
+
+// Path between the ranges [first_a, last_a] and [first_b, last_b] of the path travelled.
+double GapBetween(double first_a, double last_a, double first_b, double last_b) {
+  return std::max({0.0, first_b - last_a, first_a - last_b});
+}
+
+}  // namespace
+
 double PoseGraph2D::PathBetweenLocked(int node, int submap) const {
   const double path_m = nodes_[SlotLocked(node)].path_m;
   const SubmapData& data = submaps_[submap];
-  if (path_m < data.first_path_m) return data.first_path_m - path_m;
-  if (path_m > data.last_path_m) return path_m - data.last_path_m;
-  return 0.0;
+  double best_m = GapBetween(path_m, path_m, data.first_path_m, data.last_path_m);
+  for (const SubmapData& via : submaps_) {
+    if (via.trimmed || via.solved_closure_paths_m.empty()) continue;
+    const double gap_m =
+        GapBetween(via.first_path_m, via.last_path_m, data.first_path_m, data.last_path_m);
+    if (gap_m >= best_m) continue;
+    // The closure whose node is nearest along the chain.
+    const std::vector<double>& paths = via.solved_closure_paths_m;
+    const auto after = std::lower_bound(paths.begin(), paths.end(), path_m);
+    double to_closure_m = std::numeric_limits<double>::infinity();
+    if (after != paths.end()) to_closure_m = *after - path_m;
+    if (after != paths.begin()) to_closure_m = std::min(to_closure_m, path_m - *(after - 1));
+    best_m = std::min(best_m, gap_m + to_closure_m);
+  }
+  return best_m;
+}
+
+void PoseGraph2D::SetSolvedClosuresLocked(const std::vector<std::pair<int, int>>& loops) {
+  for (SubmapData& data : submaps_) data.solved_closure_paths_m.clear();
+  for (const auto& [node, submap] : loops) {
+    const int slot = SlotLocked(node);
+    if (slot < 0 || submap < 0 || submap >= static_cast<int>(submaps_.size())) continue;
+    submaps_[submap].solved_closure_paths_m.push_back(nodes_[slot].path_m);
+  }
+  for (SubmapData& data : submaps_) {
+    std::sort(data.solved_closure_paths_m.begin(), data.solved_closure_paths_m.end());
+  }
 }
 
 void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
@@ -341,6 +375,7 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
   SparsePoseAdjustment2D problem;
   // Graph indices of the problem's submaps and nodes: trimmed ones are left out.
   std::vector<int> submap_ids, node_ids;
+  std::vector<std::pair<int, int>> solved_loops;  // (node, submap) of its loop closures
   common::Rigid2d T_local_last_node;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -357,6 +392,9 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
     }
     for (Constraint2D constraint : constraints_) {
       if (constraint.tag == Constraint2D::kLoopClosureCandidate) continue;
+      if (constraint.tag == Constraint2D::kInterSubmap) {
+        solved_loops.emplace_back(constraint.node, constraint.submap);
+      }
       constraint.submap = submap_slot[constraint.submap];
       constraint.node = node_slot[SlotLocked(constraint.node)];
       problem.AddConstraint(constraint);
@@ -413,6 +451,7 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
     }
     moved = MovedSubmaps(before, std::vector<common::Rigid2d>(
                                      T_map_submaps_.begin(), T_map_submaps_.begin() + num_submaps));
+    SetSolvedClosuresLocked(solved_loops);
     ++solve_count_;
     ++stats_.optimizations;
     stats_.optimization_s += SecondsSince(start);

@@ -102,6 +102,16 @@ std::vector<Constraint2D> PoseGraph2D::LoopConstraints() const {
   return loops;
 }
 
+std::optional<double> PoseGraph2D::PathBetween(int node, int submap) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  const int slot = SlotLocked(node);
+  if (submap < 0 || submap >= static_cast<int>(submaps_.size()) || submaps_[submap].trimmed ||
+      slot < 0 || nodes_[slot].trimmed) {
+    return std::nullopt;
+  }
+  return PathBetweenLocked(node, submap);
+}
+
 std::optional<common::Rigid2d> PoseGraph2D::T_submap_node(int submap, int node) const {
   std::lock_guard<std::mutex> lock(mutex_);
   const int slot = SlotLocked(node);

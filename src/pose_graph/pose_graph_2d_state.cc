@@ -70,6 +70,13 @@ void PoseGraph2D::RestoreState(
     T_map_nodes_ = state.T_map_nodes;
     T_map_submaps_ = state.T_map_submaps;
     constraints_ = state.constraints;
+    // The shortcuts of the drift bound, taken from every accepted loop closure as if all had
+    // been solved (the checkpoint does not say which were): at most one optimisation early.
+    std::vector<std::pair<int, int>> loops;
+    for (const Constraint2D& c : constraints_) {
+      if (c.tag == Constraint2D::kInterSubmap) loops.emplace_back(c.node, c.submap);
+    }
+    SetSolvedClosuresLocked(loops);
     nodes_since_optimization_ = state.nodes_since_optimization;
     finished_submaps_at_last_trim_ = state.finished_submaps_at_last_trim;
     solve_count_ = state.solve_count;

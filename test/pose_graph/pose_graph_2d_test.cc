@@ -53,6 +53,9 @@ struct RunResult {
   std::map<int, common::Rigid2d> placed;
   std::vector<common::Rigid2d> T_map_submaps;
   int compacted_submaps = 0;  // held deflated at the end
+  // PathBetween(last node, submap 0) at the end, and the path along the chain of nodes.
+  double last_node_to_first_submap_m = -1.0;
+  double last_node_to_first_submap_along_chain_m = -1.0;
 };
 
 // Local SLAM with a known drift (testing/drifting_arc_drive.h).
@@ -84,6 +87,12 @@ RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Exe
   for (const auto& submap : graph.submaps()) result.compacted_submaps += submap && submap->compacted();
   result.stats = graph.stats();
   result.T_map_nodes = graph.Snapshot()->T_map_nodes;
+  result.last_node_to_first_submap_m = graph.PathBetween(num_nodes - 1, 0).value_or(-1.0);
+  double path_m = 0.0;  // submap 0 holds node 0; the drive goes on from it
+  for (int i = 1; i < num_nodes; ++i) {
+    path_m += (result.T_local_nodes[i].translation() - result.T_local_nodes[i - 1].translation()).norm();
+  }
+  result.last_node_to_first_submap_along_chain_m = path_m;
   EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
   return result;
 }
@@ -246,6 +255,27 @@ TEST(PoseGraph2DTest, LoopClosuresBeyondDriftAreRefusedAndCounted) {
   EXPECT_GT(run.stats.loop_closures_beyond_drift, 0);
   EXPECT_LT(run.stats.loop_closures_found, defaults.stats.loop_closures_found);
   EXPECT_GT(EndErrorM(run.T_map_nodes), 0.2);
+}
+
+// Drift accrues only since the graph last tied two places together: once the lap's closures
+// are solved, the path the drift bound allows for between the last node and the first submap is
+// the way round through them, not the lap.
+TEST(PoseGraph2DTest, SolvedLoopClosuresShortenThePathTheDriftBoundAllowsFor) {
+  const int num_nodes = kLapAndATenthNodes;
+  common::InlineExecutor executor;
+  const RunResult local_only = RunGraph(num_nodes, 0, &executor);
+  const RunResult closed = RunGraph(num_nodes, 10, &executor);
+  std::printf("last node to submap 0: %.2f m without closures, %.2f m with %d (chain %.2f m)\n",
+              local_only.last_node_to_first_submap_m, closed.last_node_to_first_submap_m,
+              closed.stats.loop_closures_found, closed.last_node_to_first_submap_along_chain_m);
+  ASSERT_GT(closed.stats.loop_closures_found, 0);
+  // Submap 0 holds the first nodes, so along the chain this is nearly the whole drive.
+  EXPECT_GT(local_only.last_node_to_first_submap_m,
+            0.8 * local_only.last_node_to_first_submap_along_chain_m);
+  EXPECT_LE(local_only.last_node_to_first_submap_m,
+            local_only.last_node_to_first_submap_along_chain_m + 1e-9);
+  EXPECT_GE(closed.last_node_to_first_submap_m, 0.0);
+  EXPECT_LT(closed.last_node_to_first_submap_m, 0.2 * closed.last_node_to_first_submap_along_chain_m);
 }
 
 TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {

@@ -221,6 +221,10 @@ class PoseGraph2D {
   bool RemoveLoopConstraint(int id);
   // The loop closures (accepted or candidates) in the graph now.
   std::vector<Constraint2D> LoopConstraints() const;
+  // The path between node `node` and submap `submap` that the loop-closure drift bound allows
+  // for (DriftExplainsCorrection): along the chain of nodes, or through a loop closure of the
+  // last solved graph, whichever is shorter; empty if either is gone or unknown.
+  std::optional<double> PathBetween(int node, int submap) const;
   // Where node `node` stands in submap `submap` by the current global estimate
   // (T_map_submap^-1 * T_map_node); empty if either is gone or unknown.
   std::optional<common::Rigid2d> T_submap_node(int submap, int node) const;
@@ -267,12 +271,20 @@ class PoseGraph2D {
     // NodeData::path_m of the first (-1 before it) and the last node inserted into it.
     double first_path_m = -1.0;
     double last_path_m = 0.0;
+    // NodeData::path_m of the nodes that loop closures in the last solved graph tie to this
+    // submap, ascending: shortcuts for PathBetweenLocked.
+    std::vector<double> solved_closure_paths_m;
   };
 
   int SubmapIndexLocked(const std::shared_ptr<const mapping::Submap2D>& submap,
                         const common::Rigid2d& T_map_local);
-  // Path travelled between node `node` (held) and the nearest node inserted into `submap`.
+  // Path travelled between node `node` (held) and the nearest node inserted into `submap`:
+  // along the chain of nodes, or to a node that a solved loop closure ties to some submap and
+  // on along the chain from that submap, whichever is shorter (drift accrues only along the
+  // path since the graph last tied the two together).
   double PathBetweenLocked(int node, int submap) const;
+  // Sets every submap's solved_closure_paths_m from `loops` (node, submap) of a solved graph.
+  void SetSolvedClosuresLocked(const std::vector<std::pair<int, int>>& loops);
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
   void QueueSearchLocked(const PendingSearch2D& search);
