@@ -87,7 +87,8 @@ double RealTimeCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_po
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
     const int size_x = bounds.max_x - bounds.min_x + 1;
     const int size_y = bounds.max_y - bounds.min_y + 1;
-    sums.assign(static_cast<size_t>(size_x) * size_y, 0.0);  // index (dx - min_x) * size_y + dy - min_y
+    // Candidate (dx, dy) sums at (dx - min_x) * size_y + dy - min_y: the order they are scored in.
+    sums.assign(static_cast<size_t>(size_x) * size_y, 0.0);
     for (const Eigen::Array2i& scan_cell : scans[i]) {
       const Eigen::Array2i low = scan_cell + Eigen::Array2i(bounds.min_x, bounds.min_y);
       const Eigen::Array2i high = scan_cell + Eigen::Array2i(bounds.max_x, bounds.max_y);

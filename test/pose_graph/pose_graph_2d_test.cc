@@ -90,7 +90,8 @@ RunResult RunGraph(int num_nodes, const PoseGraphOptions2D& options, common::Exe
   result.last_node_to_first_submap_m = graph.PathBetween(num_nodes - 1, 0).value_or(-1.0);
   double path_m = 0.0;  // submap 0 holds node 0; the drive goes on from it
   for (int i = 1; i < num_nodes; ++i) {
-    path_m += (result.T_local_nodes[i].translation() - result.T_local_nodes[i - 1].translation()).norm();
+    path_m += (result.T_local_nodes[i].translation() - result.T_local_nodes[i - 1].translation())
+                  .norm();
   }
   result.last_node_to_first_submap_along_chain_m = path_m;
   EXPECT_EQ(graph.node_stamps_s().size(), static_cast<size_t>(num_nodes));
@@ -275,7 +276,8 @@ TEST(PoseGraph2DTest, SolvedLoopClosuresShortenThePathTheDriftBoundAllowsFor) {
   EXPECT_LE(local_only.last_node_to_first_submap_m,
             local_only.last_node_to_first_submap_along_chain_m + 1e-9);
   EXPECT_GE(closed.last_node_to_first_submap_m, 0.0);
-  EXPECT_LT(closed.last_node_to_first_submap_m, 0.2 * closed.last_node_to_first_submap_along_chain_m);
+  EXPECT_LT(closed.last_node_to_first_submap_m,
+            0.2 * closed.last_node_to_first_submap_along_chain_m);
 }
 
 TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
