@@ -40,10 +40,7 @@ std::vector<LoopClosure2D> PoseGraph2D::TakeNewLoopClosures() {
 
 int PoseGraph2D::AddLoopConstraint(const ExternalLoopConstraint2D& external) {
   std::lock_guard<std::mutex> lock(mutex_);
-  if (external.submap < 0 || external.submap >= static_cast<int>(submaps_.size()) ||
-      submaps_[external.submap].trimmed || NodeGoneLocked(external.node)) {
-    return -1;
-  }
+  if (!PairHeldLocked(external.node, external.submap)) return -1;
   const std::vector<int>& inserted_into = NodeLocked(external.node).inserted_into;
   if (std::find(inserted_into.begin(), inserted_into.end(), external.submap) !=
       inserted_into.end()) {
@@ -104,22 +101,14 @@ std::vector<Constraint2D> PoseGraph2D::LoopConstraints() const {
 
 std::optional<double> PoseGraph2D::PathBetween(int node, int submap) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  const int slot = SlotLocked(node);
-  if (submap < 0 || submap >= static_cast<int>(submaps_.size()) || submaps_[submap].trimmed ||
-      slot < 0 || nodes_[slot].trimmed) {
-    return std::nullopt;
-  }
+  if (!PairHeldLocked(node, submap)) return std::nullopt;
   return PathBetweenLocked(node, submap);
 }
 
 std::optional<common::Rigid2d> PoseGraph2D::T_submap_node(int submap, int node) const {
   std::lock_guard<std::mutex> lock(mutex_);
-  const int slot = SlotLocked(node);
-  if (submap < 0 || submap >= static_cast<int>(submaps_.size()) || submaps_[submap].trimmed ||
-      slot < 0 || nodes_[slot].trimmed) {
-    return std::nullopt;
-  }
-  return T_map_submaps_[submap].inverse() * T_map_nodes_[slot];
+  if (!PairHeldLocked(node, submap)) return std::nullopt;
+  return T_map_submaps_[submap].inverse() * T_map_nodes_[SlotLocked(node)];
 }
 
 }  // namespace pose_graph

@@ -315,6 +315,11 @@ class PoseGraph2D {
     const int slot = SlotLocked(node);
     return slot < 0 || nodes_[slot].trimmed;
   }
+  // Both ends of a node-in-submap pair are known and still held (not trimmed).
+  bool PairHeldLocked(int node, int submap) const {
+    return submap >= 0 && submap < static_cast<int>(submaps_.size()) &&
+           !submaps_[submap].trimmed && !NodeGoneLocked(node);
+  }
 
   const PoseGraphOptions2D options_;
   common::Executor* const executor_;
