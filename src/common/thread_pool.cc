@@ -5,9 +5,14 @@
 namespace fusemap {
 namespace common {
 
-ThreadPool::ThreadPool(int num_threads) {
+ThreadPool::ThreadPool(int num_threads, std::function<void()> on_worker_start) {
   assert(num_threads > 0);
-  for (int i = 0; i < num_threads; ++i) workers_.emplace_back([this] { Work(); });
+  for (int i = 0; i < num_threads; ++i) {
+    workers_.emplace_back([this, on_worker_start] {
+      if (on_worker_start) on_worker_start();
+      Work();
+    });
+  }
 }
 
 ThreadPool::~ThreadPool() {

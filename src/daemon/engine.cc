@@ -29,8 +29,16 @@ constexpr std::chrono::milliseconds kRgbdPoll{50};
 // Scan poses for the visual thread: minutes of them at 25 Hz; if it lags further the oldest go
 // (counted), never the SLAM thread's time.
 constexpr size_t kVisualPoseQueueSize = 4096;
-// The visual thread's nice value (Linux: per thread).
+// Nice values (Linux: per thread) of the threads that may lag: global SLAM's workers
+// (loop-closure searches, optimisation) and, behind them, the visual loop checker. On a busy
+// machine the SLAM thread, which publishes poses, gets the CPU first (issue 15: scan->pose p99).
+constexpr int kWorkerThreadNice = 5;
 constexpr int kVisualThreadNice = 10;
+
+// Lowering one's own thread priority needs no privilege; failing to is harmless.
+void LowerThisThreadPriority(int nice) {
+  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), nice);
+}
 
 std::chrono::steady_clock::duration Period(double rate_hz) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -55,7 +63,8 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
                      OverflowPolicy::kDropOldest,
                      [this](const sensor::RgbdFrame&) { ++visual_frames_dropped_; }) {
   if (num_threads > 1) {
-    executor_ = std::make_unique<common::ThreadPool>(num_threads);
+    executor_ = std::make_unique<common::ThreadPool>(
+        num_threads, [] { LowerThisThreadPriority(kWorkerThreadNice); });
   } else {
     executor_ = std::make_unique<common::InlineExecutor>();
   }
@@ -278,8 +287,8 @@ void Engine::SaveVisualKeyframes(const session::VisualStage& stage) {
 void Engine::RunVisual() {
   using Clock = std::chrono::steady_clock;
   // A back-end that may lag: on a busy machine the SLAM thread (pose publication) gets the CPU
-  // first. Lowering one's own thread priority needs no privilege; failing to is harmless.
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), kVisualThreadNice);
+  // first.
+  LowerThisThreadPriority(kVisualThreadNice);
   session::VisualStage* stage = session_->visual_stage();
   const auto publish = [this, stage] {
     std::lock_guard<std::mutex> lock(visual_mutex_);

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <mutex>
+#include <set>
+#include <thread>
 
 namespace fusemap {
 namespace common {
@@ -36,6 +39,32 @@ TEST(ThreadPoolTest, DestructorDrainsPendingWork) {
     for (int i = 0; i < 100; ++i) pool.Schedule([&] { ++count; });
   }
   EXPECT_EQ(count.load(), 100);
+}
+
+TEST(ThreadPoolTest, WorkerStartHookRunsOnEachWorkerBeforeItsFirstTask) {
+  std::mutex mutex;
+  std::set<std::thread::id> started;
+  int tasks_on_unstarted_threads = 0;
+  int tasks = 0;
+  {
+    ThreadPool pool(3, [&] {
+      std::lock_guard<std::mutex> lock(mutex);
+      started.insert(std::this_thread::get_id());
+    });
+    for (int i = 0; i < 200; ++i) {
+      pool.Schedule([&] {
+        std::lock_guard<std::mutex> lock(mutex);
+        ++tasks;
+        tasks_on_unstarted_threads += started.count(std::this_thread::get_id()) == 0;
+      });
+    }
+    pool.WaitIdle();
+  }
+  EXPECT_EQ(tasks, 200);
+  EXPECT_EQ(tasks_on_unstarted_threads, 0);
+  // Once per worker, on the worker's own thread.
+  EXPECT_EQ(started.size(), 3u);
+  EXPECT_EQ(started.count(std::this_thread::get_id()), 0u);
 }
 
 TEST(InlineExecutorTest, RunsImmediately) {

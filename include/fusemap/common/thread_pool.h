@@ -29,10 +29,12 @@ class InlineExecutor : public Executor {
   void WaitIdle() override {}
 };
 
-// Fixed-size pool; tasks run in FIFO order on whichever worker is free.
+// Fixed-size pool; tasks run in FIFO order on whichever worker is free. `on_worker_start`, if
+// given, runs first on each worker's own thread (fusemapd lowers the workers' priority there,
+// so that background searches never take the CPU from pose publication).
 class ThreadPool : public Executor {
  public:
-  explicit ThreadPool(int num_threads);
+  explicit ThreadPool(int num_threads, std::function<void()> on_worker_start = {});
   ~ThreadPool() override;
   ThreadPool(const ThreadPool&) = delete;
   ThreadPool& operator=(const ThreadPool&) = delete;
