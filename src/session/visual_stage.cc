@@ -279,7 +279,14 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
       common::Rigid2d expected;
     };
     std::vector<View> views;
-    for (int id : checker_.KeyframesOfSubmap(loop.submap)) {
+    // A keyframe is bound to the older of the two submaps its node went into, so the first part
+    // of a submap was seen by keyframes bound to the one before (their nodes are in both).
+    std::vector<int> ids = checker_.KeyframesOfSubmap(loop.submap);
+    if (loop.submap > 0) {
+      const std::vector<int> previous = checker_.KeyframesOfSubmap(loop.submap - 1);
+      ids.insert(ids.end(), previous.begin(), previous.end());
+    }
+    for (int id : ids) {
       if (id == query) continue;
       const std::optional<common::Rigid2d> T_submap_match = T_submap_base(loop.submap, id);
       if (!T_submap_match) continue;

@@ -246,6 +246,28 @@ TEST(VisualStageTest, RestoredKeyframesStillCloseTheLoop) {
   }
 }
 
+// Keyframes are bound to the older of the two active submaps, so the start of submap 1 (node
+// 10 on: its first ten nodes also go into submap 0) was seen by keyframes bound to submap 0
+// only. A laser loop into that part of submap 1 is still checked by the camera.
+TEST(VisualStageTest, LaserLoopIntoTheStartOfASubmapIsChecked) {
+  VisualRun run;
+  const int lap_nodes = static_cast<int>(std::round(2.0 * common::kPi * test_world::kArcRadiusM / kStepM));
+  const int first = 10;
+  const int node = first + lap_nodes;
+  run.Drive(node + 1);
+  // Where local SLAM put `first` in submap 1 (exact within a submap) and the true motion from
+  // `first` to `node`, a lap later at the same place.
+  const common::Rigid2d T_submap_first = *run.graph().T_submap_node(1, first);
+  const common::Rigid2d T_first_node = TruePose(first).inverse() * TruePose(node);
+  const int id = run.AddLaserLoop(node, 1, T_submap_first * T_first_node);
+  ASSERT_GE(id, 0);
+  run.stage().Finish();
+  const auto* r = run.RecordOf(node);
+  ASSERT_NE(r, nullptr);
+  EXPECT_EQ(r->decision, LoopDecision::kLaserConfirmed) << r->reason;
+  EXPECT_EQ(run.LoopById(id)->source, pose_graph::Constraint2D::kBoth);
+}
+
 TEST(VisualStageTest, LaserLoopWhereTheCameraSawNothingIsKept) {
   VisualRun run;
   run.Drive(30, /*with_camera=*/false);
