@@ -1,5 +1,6 @@
 #include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 
+#include "fusemap/mapping/scan_matching/match_evidence_2d.h"
 #include "fusemap/mapping/scan_matching/scan_information_2d.h"
 
 namespace fusemap {
@@ -30,6 +31,9 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
       "min_translation_information_ratio", "must be in [0, 1]");
   check->Require(max_correction_m >= 0.0, "max_correction_m", "must be >= 0");
   check->Require(max_correction_per_path_m >= 0.0, "max_correction_per_path_m", "must be >= 0");
+  check->Require(max_unevidenced_correction_m >= 0.0, "max_unevidenced_correction_m",
+                 "must be >= 0");
+  check->Require(min_correction_evidence_z >= 0.0, "min_correction_evidence_z", "must be >= 0");
   check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
 }
@@ -47,6 +51,8 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   reader.Get("min_translation_information_ratio", &options.min_translation_information_ratio);
   reader.Get("max_correction_m", &options.max_correction_m);
   reader.Get("max_correction_per_path_m", &options.max_correction_per_path_m);
+  reader.Get("max_unevidenced_correction_m", &options.max_unevidenced_correction_m);
+  reader.Get("min_correction_evidence_z", &options.min_correction_evidence_z);
   options.fast_correlative_scan_matcher = mapping::ParseFastCorrelativeScanMatcherOptions2D(
       reader.Child("fast_correlative_scan_matcher"));
   if (reader.Has("ceres_scan_matcher")) {
@@ -64,6 +70,16 @@ bool DriftExplainsCorrection(const common::Rigid2d& T_submap_node_estimate,
   const double correction_m =
       (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
   return correction_m <= options.max_correction_m + options.max_correction_per_path_m * path_m;
+}
+
+bool EvidenceSupportsCorrection(const common::Rigid2d& T_submap_node_estimate,
+                                const common::Rigid2d& T_submap_node_match, double evidence_z,
+                                const ConstraintBuilderOptions2D& options) {
+  if (options.min_correction_evidence_z == 0.0) return true;
+  const double correction_m =
+      (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
+  return correction_m <= options.max_unevidenced_correction_m ||
+         evidence_z >= options.min_correction_evidence_z;
 }
 
 LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
@@ -116,6 +132,11 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
       constraint.unmeasured_direction = information.weakest_direction;
     }
   }
+  // Against the estimate, on the grid as the loop-closure Ceres match reads it (never-observed
+  // cells are evidence against a pose).
+  constraint.evidence_z =
+      mapping::GainInStandardErrors(*grid, mapping::kMinProbability, initial,
+                                    T_grid_submap * constraint.T_submap_node, cloud);
   constraint.translation_weight = options_.loop_closure_translation_weight;
   constraint.rotation_weight = options_.loop_closure_rotation_weight;
   constraint.tag = Constraint2D::kInterSubmap;

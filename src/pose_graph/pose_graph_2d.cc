@@ -274,6 +274,11 @@ std::function<void()> PoseGraph2D::SearchTaskLocked(std::uint64_t id,
       ++stats_.loop_closures_beyond_drift;
       return;
     }
+    if (!EvidenceSupportsCorrection(search.T_submap_node, constraint->T_submap_node,
+                                    constraint->evidence_z, options_.constraint_builder)) {
+      ++stats_.loop_closures_ambiguous;
+      return;
+    }
     constraint->submap = search.submap;
     constraint->node = search.node;
     constraint->laser_score = score;

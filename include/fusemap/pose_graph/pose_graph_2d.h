@@ -130,6 +130,10 @@ class PoseGraph2D {
     // Matches refused because they move the node further than drift explains
     // (constraint_builder.max_correction_m; not checkpointed).
     int loop_closures_beyond_drift = 0;
+    // Matches refused because they move the node beyond max_unevidenced_correction_m yet fit
+    // hardly better than the estimate (constraint_builder.min_correction_evidence_z; not
+    // checkpointed).
+    int loop_closures_ambiguous = 0;
     // Loop-closure searches queued and not yet finished: now, and the most at any time since
     // the graph was made (not checkpointed).
     int pending_searches = 0;

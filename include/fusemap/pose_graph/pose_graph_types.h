@@ -32,6 +32,10 @@ struct Constraint2D {
   // Loop closures (and candidates): a stable id, PoseGraph2D's handle for them; -1 otherwise.
   int loop_id = -1;
   double laser_score = 0.0;  // the laser matcher's score, laser loop closures only
+  // Laser loop closures: how much better the scan fits the submap at the constraint's pose than
+  // at the graph's estimate, in standard errors of the per-point gain
+  // (mapping::GainInStandardErrors; see ConstraintBuilderOptions2D::min_correction_evidence_z).
+  double evidence_z = 0.0;
   // A laser loop closure whose scan holds the match in one direction only (a corridor of plain
   // walls, mapping::ScanInformation2D): the unit vector, in the node's frame, along which it
   // measures nothing. Zero when it measures every way.
