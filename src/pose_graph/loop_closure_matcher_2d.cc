@@ -63,22 +63,30 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   return options;
 }
 
+namespace {
+
+// How far a match moves the node from the estimate (the turn is bounded by the search window).
+double CorrectionM(const common::Rigid2d& T_submap_node_estimate,
+                   const common::Rigid2d& T_submap_node_match) {
+  return (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
+}
+
+}  // namespace
+
 bool DriftExplainsCorrection(const common::Rigid2d& T_submap_node_estimate,
                              const common::Rigid2d& T_submap_node_match, double path_m,
                              const ConstraintBuilderOptions2D& options) {
   if (options.max_correction_m == 0.0) return true;
-  const double correction_m =
-      (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
-  return correction_m <= options.max_correction_m + options.max_correction_per_path_m * path_m;
+  return CorrectionM(T_submap_node_estimate, T_submap_node_match) <=
+         options.max_correction_m + options.max_correction_per_path_m * path_m;
 }
 
 bool EvidenceSupportsCorrection(const common::Rigid2d& T_submap_node_estimate,
                                 const common::Rigid2d& T_submap_node_match, double evidence_z,
                                 const ConstraintBuilderOptions2D& options) {
   if (options.min_correction_evidence_z == 0.0) return true;
-  const double correction_m =
-      (T_submap_node_match.translation() - T_submap_node_estimate.translation()).norm();
-  return correction_m <= options.max_unevidenced_correction_m ||
+  return CorrectionM(T_submap_node_estimate, T_submap_node_match) <=
+             options.max_unevidenced_correction_m ||
          evidence_z >= options.min_correction_evidence_z;
 }
 
