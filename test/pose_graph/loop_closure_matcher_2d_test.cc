@@ -94,8 +94,8 @@ TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
   // 0.5 m and 5 deg off, the scan fits the room far worse at the estimate than at the match.
   std::printf("evidence %.1f standard errors\n", constraint->evidence_z);
   EXPECT_GT(constraint->evidence_z, options.min_correction_evidence_z);
-  EXPECT_TRUE(
-      EvidenceSupportsCorrection(estimate, constraint->T_submap_node, constraint->evidence_z, options));
+  EXPECT_TRUE(EvidenceSupportsCorrection(estimate, constraint->T_submap_node,
+                                         constraint->evidence_z, options));
 }
 
 TEST(LoopClosureMatcher2DTest, RejectsScanFromDifferentRoom) {

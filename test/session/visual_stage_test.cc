@@ -251,7 +251,8 @@ TEST(VisualStageTest, RestoredKeyframesStillCloseTheLoop) {
 // only. A laser loop into that part of submap 1 is still checked by the camera.
 TEST(VisualStageTest, LaserLoopIntoTheStartOfASubmapIsChecked) {
   VisualRun run;
-  const int lap_nodes = static_cast<int>(std::round(2.0 * common::kPi * test_world::kArcRadiusM / kStepM));
+  const int lap_nodes =
+      static_cast<int>(std::round(2.0 * common::kPi * test_world::kArcRadiusM / kStepM));
   const int first = 10;
   const int node = first + lap_nodes;
   run.Drive(node + 1);
