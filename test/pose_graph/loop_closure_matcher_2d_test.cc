@@ -190,18 +190,18 @@ TEST(DriftExplainsCorrectionTest, TheBoundGrowsWithThePathBetween) {
   EXPECT_TRUE(DriftExplainsCorrection(estimate, three_m_off, 0.0, options));
 }
 
-// Up to 0.2 m a match is taken on its score; beyond, only with 3 standard errors of evidence
+// Up to 0.2 m a match is taken on its score; beyond, only with 2 standard errors of evidence
 // over the estimate; min_correction_evidence_z 0 takes every match.
 TEST(EvidenceSupportsCorrectionTest, LargerCorrectionsNeedEvidence) {
   ConstraintBuilderOptions2D options;
   ASSERT_EQ(options.max_unevidenced_correction_m, 0.2);
-  ASSERT_EQ(options.min_correction_evidence_z, 3.0);
+  ASSERT_EQ(options.min_correction_evidence_z, 2.0);
   const common::Rigid2d estimate(Eigen::Vector2d(2.0, 1.0), 0.3);
   const common::Rigid2d near(Eigen::Vector2d(2.15, 1.0), 0.3);
   const common::Rigid2d room_away(Eigen::Vector2d(2.0, 1.4), 0.3);
   EXPECT_TRUE(EvidenceSupportsCorrection(estimate, near, 0.0, options));
   EXPECT_FALSE(EvidenceSupportsCorrection(estimate, room_away, 0.9, options));
-  EXPECT_TRUE(EvidenceSupportsCorrection(estimate, room_away, 3.5, options));
+  EXPECT_TRUE(EvidenceSupportsCorrection(estimate, room_away, 2.5, options));
   options.min_correction_evidence_z = 0.0;
   EXPECT_TRUE(EvidenceSupportsCorrection(estimate, room_away, 0.0, options));
 }
@@ -237,7 +237,7 @@ TEST(ConstraintBuilderOptions2DTest, RejectsBadOptions) {
   options.min_correction_evidence_z = -1.0;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("min_correction_evidence_z"), std::string::npos) << error;
-  options.min_correction_evidence_z = 3.0;
+  options.min_correction_evidence_z = 2.0;
   options.max_unevidenced_correction_m = -0.1;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("max_unevidenced_correction_m"), std::string::npos) << error;

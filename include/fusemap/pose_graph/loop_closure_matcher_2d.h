@@ -53,11 +53,12 @@ struct ConstraintBuilderOptions2D {
   // a match one room or a corridor's slide away fits about as well as the estimate, and a score
   // above min_score does not tell the two apart. Simulator rooms and corridor (3,649 right
   // matches): no right one moved the node more than 0.2 m; the wrong ones that drift explained
-  // moved it 0.30 and 0.42 m with evidence 0.35 and 0.94. Shared logs: it refuses one match
-  // of ~320 on intel and one of ~40 on seattle. 0 for min_correction_evidence_z takes every
-  // match.
+  // moved it 0.30 and 0.42 m with evidence 0.35 and 0.94. Shared logs (--threads 2): the
+  // matches below 3 moved the node 0.21-0.32 m at 1.1-2.9 (aces, intel, seattle); 2 keeps the
+  // ones above 2 (aces' two, RMSE 0.145-0.177 m without them) and refuses intel's and seattle's
+  // at 1.1-1.5. 0 for min_correction_evidence_z takes every match.
   double max_unevidenced_correction_m = 0.2;
-  double min_correction_evidence_z = 3.0;
+  double min_correction_evidence_z = 2.0;
   mapping::FastCorrelativeScanMatcherOptions2D fast_correlative_scan_matcher;
   mapping::CeresScanMatcherOptions2D ceres_scan_matcher;
 
