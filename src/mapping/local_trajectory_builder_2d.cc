@@ -23,6 +23,7 @@ void LocalTrajectoryBuilderOptions2D::Check(common::OptionChecker* check) const 
   check->Nested("loop_closure_adaptive_voxel_filter", loop_closure_adaptive_voxel_filter);
   check->Nested("initial_branch_and_bound_match", initial_branch_and_bound_match);
   check->Nested("real_time_correlative_scan_matcher", real_time_correlative_scan_matcher);
+  check->Nested("adaptive_rotation_prior", adaptive_rotation_prior);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
   check->Nested("motion_filter", motion_filter);
   check->Nested("submaps", submaps);
@@ -57,6 +58,8 @@ LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::Con
   reader.Get("use_online_correlative_scan_matching", &options.use_online_correlative_scan_matching);
   options.real_time_correlative_scan_matcher = ParseRealTimeCorrelativeScanMatcherOptions2D(
       reader.Child("real_time_correlative_scan_matcher"));
+  options.adaptive_rotation_prior =
+      ParseAdaptiveRotationPriorOptions(reader.Child("adaptive_rotation_prior"));
   options.ceres_scan_matcher = ParseCeresScanMatcherOptions2D(reader.Child("ceres_scan_matcher"));
   options.motion_filter = ParseMotionFilterOptions(reader.Child("motion_filter"));
   options.submaps = ParseSubmapsOptions(reader.Child("submaps"));
@@ -73,6 +76,7 @@ LocalTrajectoryBuilder2D::LocalTrajectoryBuilder2D(const LocalTrajectoryBuilderO
       motion_filter_(options.motion_filter),
       initial_matcher_(options.initial_branch_and_bound_match),
       real_time_matcher_(options.real_time_correlative_scan_matcher),
+      rotation_prior_(options.adaptive_rotation_prior),
       ceres_matcher_(options.ceres_scan_matcher),
       extrapolator_(options.pose_queue_duration_s) {}
 
@@ -83,6 +87,7 @@ LocalTrajectoryBuilderState2D LocalTrajectoryBuilder2D::ExportState() const {
   state.last_insertion_stamp_s = last_insertion_stamp_s_;
   state.T_local_last_insertion = T_local_last_insertion_;
   state.stats = stats_;
+  state.heading_corrections_rad = rotation_prior_.corrections_rad();
   return state;
 }
 
@@ -95,6 +100,7 @@ void LocalTrajectoryBuilder2D::RestoreState(const LocalTrajectoryBuilderState2D&
   last_insertion_stamp_s_ = state.last_insertion_stamp_s;
   T_local_last_insertion_ = state.T_local_last_insertion;
   stats_ = state.stats;
+  rotation_prior_.Restore(state.heading_corrections_rad);
   // The motion filter only remembers the last scan it let through; replaying that one scan
   // puts it back in the same state as far as later decisions go.
   if (stats_.inserted > 0) {
@@ -220,8 +226,15 @@ std::optional<LocalTrajectoryBuilder2D::MatchingResult> LocalTrajectoryBuilder2D
   }
   MatchingResult result;
   result.stamp_s = scan.stamp_s;
+  real_time_matcher_.set_rotation_delta_cost_weight(rotation_prior_.Weight(
+      options_.real_time_correlative_scan_matcher.rotation_delta_cost_weight));
+  const bool had_pose = extrapolator_.HasPose();
   result.T_local_tracking =
       matching_cloud.empty() ? predicted : ScanMatch(predicted, matching_cloud, &result.match_score);
+  // Only a real prediction says anything about the odometry.
+  if (had_pose && !matching_cloud.empty()) {
+    rotation_prior_.AddCorrection(result.T_local_tracking.angle_rad() - predicted.angle_rad());
+  }
   extrapolator_.AddPose(scan.stamp_s, result.T_local_tracking);
 
   if (motion_filter_.IsSimilar(scan.stamp_s, result.T_local_tracking)) return result;

@@ -96,6 +96,7 @@ TEST(CheckpointTest, RoundTripIsExact) {
   const CheckpointContents& contents = Contents();
   ASSERT_GE(contents.state.submaps.size(), 4u);
   ASSERT_GT(contents.state.pose_graph.stats.loop_closures_found, 0);
+  ASSERT_FALSE(contents.state.local_slam.heading_corrections_rad.empty());
   for (const bool compress : {true, false}) {
     const std::string path = TempPath(compress ? "zlib" : "raw");
     std::string error;
@@ -109,6 +110,8 @@ TEST(CheckpointTest, RoundTripIsExact) {
       EXPECT_EQ(read.state.submaps[s].cells, contents.state.submaps[s].cells) << s;
     }
     EXPECT_EQ(read.state.pose_graph.nodes.size(), contents.state.pose_graph.nodes.size());
+    EXPECT_EQ(read.state.local_slam.heading_corrections_rad,
+              contents.state.local_slam.heading_corrections_rad);
     EXPECT_EQ(read.state.pose_graph.T_map_nodes.back().angle_rad(),
               contents.state.pose_graph.T_map_nodes.back().angle_rad());
     // Every field, bit for bit: the re-encoded images are identical.

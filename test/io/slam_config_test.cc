@@ -119,6 +119,12 @@ TEST(SlamConfigTest, DefaultProfileEqualsTheBuiltInDefaults) {
     EXPECT_SAME(real_time_correlative_scan_matcher.translation_delta_cost_weight);
     EXPECT_SAME(real_time_correlative_scan_matcher.rotation_delta_cost_weight);
     EXPECT_SAME(real_time_correlative_scan_matcher.unknown_probability);
+    EXPECT_SAME(adaptive_rotation_prior.enabled);
+    EXPECT_SAME(adaptive_rotation_prior.weight_deg);
+    EXPECT_SAME(adaptive_rotation_prior.min_weight);
+    EXPECT_SAME(adaptive_rotation_prior.max_weight);
+    EXPECT_SAME(adaptive_rotation_prior.window_scans);
+    EXPECT_SAME(adaptive_rotation_prior.min_scans);
     EXPECT_SAME(ceres_scan_matcher.occupied_space_weight);
     EXPECT_SAME(ceres_scan_matcher.translation_weight);
     EXPECT_SAME(ceres_scan_matcher.rotation_weight);

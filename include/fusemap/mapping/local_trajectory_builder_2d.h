@@ -8,6 +8,7 @@
 
 #include "fusemap/common/config_reader.h"
 #include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/adaptive_rotation_prior.h"
 #include "fusemap/mapping/motion_filter.h"
 #include "fusemap/mapping/pose_extrapolator_2d.h"
 #include "fusemap/mapping/scan_matching/ceres_scan_matcher_2d.h"
@@ -37,6 +38,9 @@ struct LocalTrajectoryBuilderOptions2D {
   InitialMatchOptions2D initial_branch_and_bound_match;
   bool use_online_correlative_scan_matching = true;
   RealTimeCorrelativeScanMatcherOptions2D real_time_correlative_scan_matcher;
+  // Sets the real-time match's rotation_delta_cost_weight from the heading corrections
+  // recent matches made to the prediction (see AdaptiveRotationPrior).
+  AdaptiveRotationPriorOptions adaptive_rotation_prior;
   CeresScanMatcherOptions2D ceres_scan_matcher;
   MotionFilterOptions motion_filter;
   SubmapsOptions submaps;
@@ -54,7 +58,8 @@ struct LocalTrajectoryBuilderOptions2D {
 // Keys: T_tracking_laser [x_m, y_m, yaw_rad], range_gate, voxel_filter_size_m,
 // adaptive_voxel_filter, loop_closure_adaptive_voxel_filter, min_num_returns,
 // initial_branch_and_bound_match, use_online_correlative_scan_matching,
-// real_time_correlative_scan_matcher, ceres_scan_matcher, motion_filter, submaps,
+// real_time_correlative_scan_matcher, adaptive_rotation_prior, ceres_scan_matcher,
+// motion_filter, submaps,
 // use_odometry, use_imu, pose_queue_duration_s.
 LocalTrajectoryBuilderOptions2D ParseLocalTrajectoryBuilderOptions2D(common::ConfigReader& reader);
 
@@ -143,6 +148,7 @@ class LocalTrajectoryBuilder2D {
   MotionFilter motion_filter_;
   InitialMatcher2D initial_matcher_;
   RealTimeCorrelativeScanMatcher2D real_time_matcher_;
+  AdaptiveRotationPrior rotation_prior_;
   CeresScanMatcher2D ceres_matcher_;
   PoseExtrapolator2D extrapolator_;
   double last_scan_stamp_s_ = -1e300;
@@ -159,6 +165,8 @@ struct LocalTrajectoryBuilderState2D {
   double last_insertion_stamp_s = 0.0;
   common::Rigid2d T_local_last_insertion;
   LocalTrajectoryBuilder2D::Stats stats;
+  // AdaptiveRotationPrior's window, oldest first.
+  std::vector<double> heading_corrections_rad;
 };
 
 }  // namespace mapping

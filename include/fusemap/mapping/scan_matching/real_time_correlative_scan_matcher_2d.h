@@ -51,6 +51,11 @@ class RealTimeCorrelativeScanMatcher2D {
                const ProbabilityGrid& grid, common::Rigid2d* pose,
                bool* at_window_edge = nullptr) const;
 
+  // Local SLAM sets it per scan from how well the odometry's heading has predicted.
+  void set_rotation_delta_cost_weight(double weight) {
+    options_.rotation_delta_cost_weight = weight;
+  }
+
  private:
   RealTimeCorrelativeScanMatcherOptions2D options_;
   // Probability of each stored cell value, unknown_probability for unknown cells.
