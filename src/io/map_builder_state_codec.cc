@@ -88,13 +88,16 @@ bool GetLocal(ByteReader* in, mapping::LocalTrajectoryBuilderState2D* local) {
     }
   }
   auto& s = local->stats;
-  const bool ok = in->F64(&e.linear_velocity_mps.x()) && in->F64(&e.linear_velocity_mps.y()) &&
-         in->F64(&e.angular_velocity_radps) && in->F64(&local->last_scan_stamp_s) &&
-         in->F64(&local->last_insertion_stamp_s) &&
-         DecodeRigid2d(in, &local->T_local_last_insertion) &&
-         in->I32(&s.scans) && in->I32(&s.too_few_returns) && in->I32(&s.out_of_order) &&
-         in->I32(&s.inserted) && in->I32(&s.odometry_rejected) && in->I32(&s.imu_rejected);
-  if (!ok || !in->Count(8, &n)) return false;
+  if (!(in->F64(&e.linear_velocity_mps.x()) && in->F64(&e.linear_velocity_mps.y()) &&
+        in->F64(&e.angular_velocity_radps) && in->F64(&local->last_scan_stamp_s) &&
+        in->F64(&local->last_insertion_stamp_s) &&
+        DecodeRigid2d(in, &local->T_local_last_insertion) && in->I32(&s.scans) &&
+        in->I32(&s.too_few_returns) && in->I32(&s.out_of_order) && in->I32(&s.inserted) &&
+        in->I32(&s.odometry_rejected) && in->I32(&s.imu_rejected))) {
+    return false;
+  }
+  // The adaptive heading prior's window (format 7).
+  if (!in->Count(8, &n)) return false;
   local->heading_corrections_rad.resize(n);
   for (double& c : local->heading_corrections_rad) {
     if (!in->F64(&c)) return false;
