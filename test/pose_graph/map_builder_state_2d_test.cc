@@ -138,6 +138,48 @@ TEST(MapBuilderState2DTest, RestoredBuilderContinuesExactlyLikeTheOriginal) {
             restored->pose_graph().stats().loop_closure_searches);
 }
 
+// With the real-time matcher and its adaptive heading prior on (the default profile's local
+// SLAM), the prior's window is state too: restored with it the run continues exactly; restored
+// without it, the first scans are matched with the configured weight and the run departs.
+TEST(MapBuilderState2DTest, AdaptiveHeadingPriorWindowIsRestored) {
+  const std::vector<Input> input = LoopInput();
+  const size_t split = input.size() / 2;
+  common::InlineExecutor executor;
+  MapBuilderOptions2D options = TestOptions(0.3);
+  options.local_slam.use_online_correlative_scan_matching = true;
+  options.local_slam.adaptive_rotation_prior.window_scans = 20;
+  options.local_slam.adaptive_rotation_prior.min_scans = 5;
+  // A prior this strong holds the biased odometry's heading, so the window's weight (not the
+  // configured 0.1) visibly decides the first matches after the split.
+  options.local_slam.adaptive_rotation_prior.min_weight = 200.0;
+  options.local_slam.adaptive_rotation_prior.max_weight = 200.0;
+  MapBuilder2D original(options, &executor);
+  Feed(input, 0, split, &original);
+  const MapBuilderState2D state = original.ExportState();
+  ASSERT_EQ(state.local_slam.heading_corrections_rad.size(), 20u);
+  MapBuilderState2D without_window = state;
+  without_window.local_slam.heading_corrections_rad.clear();
+
+  auto restored = MapBuilder2D::Restore(options, &executor, state);
+  auto forgetful = MapBuilder2D::Restore(options, &executor, without_window);
+  EXPECT_EQ(restored->ExportState().local_slam.heading_corrections_rad,
+            state.local_slam.heading_corrections_rad);
+  for (MapBuilder2D* builder : {&original, restored.get(), forgetful.get()}) {
+    Feed(input, split, input.size(), builder);
+    builder->Finish();
+  }
+  ExpectSamePoses(original.NodePoses(), restored->NodePoses());
+  const auto expected = original.NodePoses();
+  const auto departed = forgetful->NodePoses();
+  ASSERT_EQ(departed.size(), expected.size());
+  double max_difference_m = 0.0;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    max_difference_m = std::max(
+        max_difference_m, (departed[i].pose.translation() - expected[i].pose.translation()).norm());
+  }
+  EXPECT_GT(max_difference_m, 1e-6);
+}
+
 TEST(MapBuilderState2DTest, TrimmedGraphRestoresExactly) {
   const std::vector<Input> input = LoopInput(2.2);
   const size_t split = input.size() * 2 / 3;
