@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <limits>
 
+#include "fusemap/common/math.h"
+
 namespace fusemap {
 namespace cloud_eval {
 namespace {
@@ -18,12 +20,6 @@ constexpr double kPillarZMinM = 0.3, kPillarZMaxM = 2.0;
 constexpr double kTopFootprintMarginM = 0.05;
 constexpr double kTopHeightToleranceM = 0.04;
 constexpr double kTopBelowCameraM = 0.05;
-
-double Quantile(std::vector<double> v, double q) {
-  const size_t i = static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + i, v.end());
-  return v[i];
-}
 
 // Kasa (1976): minimises sum (x² + y² + D x + E y + F)², linear in D, E, F. Coordinates are
 // taken relative to the true axis for conditioning.
@@ -65,8 +61,9 @@ LandmarkEstimate FitBoxTop(const sim::Prism& box, const cloud::ColorCloud& cloud
   LandmarkEstimate estimate;
   estimate.points = static_cast<int>(u.size());
   if (estimate.points < kMinPoints) return estimate;
-  const Eigen::Vector2d centre_box(0.5 * (Quantile(u, 0.02) + Quantile(u, 0.98)),
-                                   0.5 * (Quantile(v, 0.02) + Quantile(v, 0.98)));
+  const Eigen::Vector2d centre_box(
+      0.5 * (common::Percentile(u, 0.02) + common::Percentile(u, 0.98)),
+      0.5 * (common::Percentile(v, 0.02) + common::Percentile(v, 0.98)));
   estimate.found = true;
   estimate.xy_m = box.centre_m + R_world_box * centre_box;
   return estimate;

@@ -1,5 +1,7 @@
 #include "fusemap/daemon/health.h"
 
+#include "fusemap/common/math.h"
+
 #include <algorithm>
 #include <cstdio>
 
@@ -22,17 +24,9 @@ LatencyWindow::Summary LatencyWindow::Summarize() const {
   summary.count = values.size();
   if (values.empty()) return summary;
   summary.max_ms = *std::max_element(values.begin(), values.end());
-  summary.p99_ms = Percentile(values, 0.99);
-  summary.median_ms = Percentile(std::move(values), 0.5);
+  summary.p99_ms = common::Percentile(values, 0.99);
+  summary.median_ms = common::Percentile(std::move(values), 0.5);
   return summary;
-}
-
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  const size_t i =
-      std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
-  std::nth_element(values.begin(), values.begin() + i, values.end());
-  return values[i];
 }
 
 std::string FormatHealth(const HealthReport& report) {

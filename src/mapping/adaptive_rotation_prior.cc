@@ -48,10 +48,7 @@ double AdaptiveRotationPrior::Weight(double configured_weight) const {
   if (!options_.enabled || static_cast<int>(abs_corrections_rad_.size()) < options_.min_scans) {
     return configured_weight;
   }
-  std::vector<double> sorted(abs_corrections_rad_.begin(), abs_corrections_rad_.end());
-  const auto middle = sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2);
-  std::nth_element(sorted.begin(), middle, sorted.end());
-  const double median_deg = *middle * 180.0 / common::kPi;
+  const double median_deg = common::RadToDeg(common::Percentile(corrections_rad(), 0.5));
   // A median of 0 (the matches never turned the prediction) asks for the strongest prior.
   if (median_deg <= 0.0) return options_.max_weight;
   return std::clamp(options_.weight_deg / median_deg, options_.min_weight, options_.max_weight);

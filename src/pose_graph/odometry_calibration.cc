@@ -48,9 +48,7 @@ double SignedDistance(const common::Rigid2d& delta) {
 
 // Huber weights for IRLS from the residuals' robust scale.
 std::vector<double> HuberWeights(const std::vector<double>& abs_residuals, double threshold_sigma) {
-  std::vector<double> sorted = abs_residuals;
-  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
-  const double sigma = std::max(1.4826 * sorted[sorted.size() / 2], 1e-9);
+  const double sigma = std::max(1.4826 * common::Percentile(abs_residuals, 0.5), 1e-9);
   const double threshold = threshold_sigma * sigma;
   std::vector<double> weights;
   weights.reserve(abs_residuals.size());

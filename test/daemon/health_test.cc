@@ -8,15 +8,6 @@ namespace fusemap {
 namespace daemon {
 namespace {
 
-TEST(HealthTest, PercentileNearestRank) {
-  std::vector<double> values;
-  for (int i = 100; i >= 1; --i) values.push_back(i);
-  EXPECT_DOUBLE_EQ(Percentile(values, 0.5), 51.0);  // rank round(0.5 * 99) = 50 -> 51
-  EXPECT_DOUBLE_EQ(Percentile(values, 0.99), 99.0);
-  EXPECT_DOUBLE_EQ(Percentile(values, 1.0), 100.0);
-  EXPECT_DOUBLE_EQ(Percentile({}, 0.5), 0.0);
-}
-
 TEST(HealthTest, LatencyWindowKeepsOnlyRecentSamples) {
   LatencyWindow window(10);
   for (int i = 0; i < 10; ++i) window.Add(1000.0);  // pushed out below

@@ -14,7 +14,7 @@ namespace {
 
 constexpr double kConfigured = 0.1;
 
-double Deg(double degrees) { return degrees * common::kPi / 180.0; }
+double Deg(double degrees) { return common::DegToRad(degrees); }
 
 AdaptiveRotationPriorOptions Options() {
   AdaptiveRotationPriorOptions options;

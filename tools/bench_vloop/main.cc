@@ -16,6 +16,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "fusemap/common/command_line.h"
+#include "fusemap/common/math.h"
 #include "fusemap/visual_loop/geometric_verifier.h"
 #include "fusemap/visual_loop/keyframe.h"
 #include "fusemap/visual_loop/keyframe_database.h"
@@ -24,6 +25,7 @@
 namespace {
 
 using namespace fusemap;
+using common::Percentile;
 using Clock = std::chrono::steady_clock;
 
 constexpr char kUsage[] =
@@ -45,12 +47,6 @@ double ThreadCpuMs() {
   timespec t;
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
   return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-double Percentile(std::vector<double> values, double p) {
-  std::sort(values.begin(), values.end());
-  const size_t index = std::min(values.size() - 1, static_cast<size_t>(p * (values.size() - 1) + 0.5));
-  return values[index];
 }
 
 struct Frame {

@@ -35,15 +35,10 @@ namespace fusemap {
 namespace offline_tool {
 namespace {
 
+using common::Percentile;
+
 // Resident memory is sampled every this many scans (`rss_mb_over_time`).
 constexpr int kRssSampleScans = 250;
-
-double Percentile(std::vector<double> values, double q) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const size_t i = std::min(values.size() - 1, static_cast<size_t>(q * (values.size() - 1) + 0.5));
-  return values[i];
-}
 
 }  // namespace
 

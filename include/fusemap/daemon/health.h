@@ -37,8 +37,6 @@ class LatencyWindow {
   std::deque<double> samples_;  // guarded by mutex_
 };
 
-// Nearest-rank percentile (q in [0, 1]) of `values`; 0 when empty.
-double Percentile(std::vector<double> values, double q);
 
 // The report the publisher sends as fusemap_lcm::health_t (defined in io, which encodes it).
 using HealthReport = io::HealthReport;
