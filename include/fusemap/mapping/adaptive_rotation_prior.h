@@ -46,7 +46,7 @@ class AdaptiveRotationPrior {
   // before min_scans corrections.
   double Weight(double configured_weight) const;
 
-  // The corrections held, oldest first (for checkpoints).
+  // The sizes (>= 0) of the corrections held, oldest first (for checkpoints).
   std::vector<double> corrections_rad() const;
   void Restore(const std::vector<double>& corrections_rad);
 

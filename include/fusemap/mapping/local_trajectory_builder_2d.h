@@ -165,7 +165,7 @@ struct LocalTrajectoryBuilderState2D {
   double last_insertion_stamp_s = 0.0;
   common::Rigid2d T_local_last_insertion;
   LocalTrajectoryBuilder2D::Stats stats;
-  // AdaptiveRotationPrior's window, oldest first.
+  // AdaptiveRotationPrior's window: correction sizes, oldest first.
   std::vector<double> heading_corrections_rad;
 };
 
