@@ -51,7 +51,7 @@ for world in $worlds; do
     echo "== $world: mapping $mode" >&2
     if ! "$offline" --log "$dir/sim.lcm" --config "$config" --out "$run" --threads 1 --quiet > "$run.txt" 2>&1; then
       if [[ $mode == checker ]] && grep -q "visual_loop" "$run.txt"; then
-        notes+=("$world $mode wrong_by_decision=$(value wrong_by_decision "$run.loops.txt")")
+        notes+=("$world $mode wrong_by_decision=$(value wrong_by_decision "$run.loops.txt") held_across_only=$(value held_across_only "$run.loops.txt")")
     rows+=("$(printf '%-9s %-8s %s' "$world" "$mode" "not available in this build: $(grep -m1 visual_loop "$run.txt")")")
         continue
       fi
@@ -63,7 +63,7 @@ for world in $worlds; do
     "$evaluate" start-end --gt "$dir/groundtruth.tum" --est "$run/trajectory.tum" > "$run.start_end.txt"
     "$evaluate" ate --se2 --gt "$dir/groundtruth.tum" --est "$run/trajectory.tum" > "$run.ate.txt"
     "$evaluate" loops --gt "$dir/groundtruth.tum" --dir "$run" --verbose > "$run.loops.txt"
-    notes+=("$world $mode wrong_by_decision=$(value wrong_by_decision "$run.loops.txt")")
+    notes+=("$world $mode wrong_by_decision=$(value wrong_by_decision "$run.loops.txt") held_across_only=$(value held_across_only "$run.loops.txt")")
     rows+=("$(printf '%-9s %-8s %13s %13s %10s %6s %8s %14s %8s  %s' "$world" "$mode" \
       "$(value start_end_m "$run.start_end.txt")" "$(value start_end_deg "$run.start_end.txt")" \
       "$(value ate_rmse_m "$run.ate.txt")" "$(value loops "$run.loops.txt")" \

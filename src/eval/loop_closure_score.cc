@@ -71,7 +71,16 @@ LoopScore ScoreLoops(const std::vector<LoopRecord>& loops, const std::vector<Sub
           T_submap_anchor * T_world_anchor.inverse() * T_world_node;
       const common::Rigid2d difference = T_submap_node_true.inverse() * loop.T_submap_node;
       scored.scored = true;
-      scored.translation_error_m = difference.translation().norm();
+      // A loop held across a corridor only asserts nothing along it (its translation there is
+      // the graph's estimate): only the error across counts.
+      Eigen::Vector2d error_m = difference.translation();
+      const double unmeasured_norm = loop.unmeasured_direction.norm();
+      if (unmeasured_norm > 0.0) {
+        const Eigen::Vector2d along = loop.unmeasured_direction / unmeasured_norm;
+        error_m -= error_m.dot(along) * along;
+        ++score.held_across_only;
+      }
+      scored.translation_error_m = error_m.norm();
       scored.rotation_error_deg = WrappedDeg(difference.angle_rad());
       scored.wrong = scored.translation_error_m > options.max_translation_error_m ||
                      scored.rotation_error_deg > options.max_rotation_error_deg;

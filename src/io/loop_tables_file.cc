@@ -1,5 +1,6 @@
 #include "fusemap/io/loop_tables_file.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -135,6 +136,14 @@ bool ReadLoops(std::istream& in, const std::string& origin, std::vector<eval::Lo
     loop.visual_inliers = static_cast<int>(inliers);
     loop.decision = f[5];
     loop.T_submap_node = common::Rigid2d(x, y, yaw);
+    // Files written before the column existed have none: every loop measured every way.
+    const auto column = std::find(header.begin(), header.end(), "unmeasured_x");
+    const size_t ux = static_cast<size_t>(column - header.begin());
+    if (column != header.end() && ux + 1 < f.size() && header[ux + 1] == "unmeasured_y" &&
+        (!reader.Number(f[ux], "unmeasured_x", &loop.unmeasured_direction.x(), error) ||
+         !reader.Number(f[ux + 1], "unmeasured_y", &loop.unmeasured_direction.y(), error))) {
+      return false;
+    }
     loops->push_back(loop);
   }
   return error->empty();

@@ -9,7 +9,7 @@ namespace io {
 
 const char kLoopsTsvHeader[] =
     "node\tsubmap\tsource\tlaser_score\tvisual_inliers\tdecision\tx_m\ty_m\tyaw_rad\t"
-    "disagreement_m\tdisagreement_rad\treason";
+    "disagreement_m\tdisagreement_rad\tunmeasured_x\tunmeasured_y\treason";
 
 bool WriteLoopsTsv(const std::string& path,
                    const std::vector<visual_loop::ArbitrationRecord>& records, std::string* error) {
@@ -18,12 +18,16 @@ bool WriteLoopsTsv(const std::string& path,
     const visual_loop::LoopMeasurement2D* shown =
         r.chosen ? &*r.chosen : (r.laser ? &*r.laser : (r.visual ? &*r.visual : nullptr));
     const common::Rigid2d pose = shown ? shown->T_submap_node : common::Rigid2d::Identity();
-    char line[256];
-    std::snprintf(line, sizeof(line), "%d\t%d\t%s\t%.4f\t%d\t%s\t%.4f\t%.4f\t%.5f\t%.4f\t%.5f\t", r.node,
+    const Eigen::Vector2d unmeasured =
+        shown ? shown->unmeasured_direction : Eigen::Vector2d::Zero();
+    char line[320];
+    std::snprintf(line, sizeof(line),
+                  "%d\t%d\t%s\t%.4f\t%d\t%s\t%.4f\t%.4f\t%.5f\t%.4f\t%.5f\t%.4f\t%.4f\t", r.node,
                   r.submap, visual_loop::ToString(r.source), r.laser ? r.laser->laser_score : 0.0,
                   r.visual ? r.visual->visual_inliers : 0, visual_loop::ToString(r.decision),
                   pose.translation().x(), pose.translation().y(), pose.angle_rad(),
-                  r.translation_disagreement_m, r.rotation_disagreement_rad);
+                  r.translation_disagreement_m, r.rotation_disagreement_rad, unmeasured.x(),
+                  unmeasured.y());
     // The reason is free text: tabs and newlines would break the columns.
     std::string reason = r.reason;
     for (char& c : reason) {

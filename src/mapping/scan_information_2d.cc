@@ -1,9 +1,12 @@
 #include "fusemap/mapping/scan_matching/scan_information_2d.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <utility>
 #include <vector>
+
+#include "fusemap/mapping/probability_values.h"
 
 namespace fusemap {
 namespace mapping {
@@ -21,13 +24,20 @@ double ScanInformation2D::TranslationRatio() const {
   return weakest_translation / strongest_translation;
 }
 
-ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud) {
+namespace {
+
+// Lines are fitted among all of `cloud`'s points; only those with counts[i] contribute (all
+// when counts is null). Fitting among the counted points alone would invent structure: a point
+// whose wall neighbours were not counted takes neighbours across the corridor as its line.
+ScanInformation2D ComputeInformation(const sensor::PointCloud2d& cloud,
+                                     const std::vector<bool>* counts) {
   ScanInformation2D result;
   const size_t n = cloud.size();
   if (n < 3) return result;
   std::vector<std::pair<double, size_t>> by_distance;
   by_distance.reserve(n);
   for (size_t i = 0; i < n; ++i) {
+    if (counts != nullptr && !(*counts)[i]) continue;
     const Eigen::Vector2d p = cloud[i].cast<double>();
     // Brute force: loop-closure clouds hold a few hundred points, and only matches that passed
     // the score are asked about.
@@ -74,6 +84,27 @@ ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud) {
   result.strongest_translation = std::max(0.0, eigen.eigenvalues()(1));
   result.weakest_direction = eigen.eigenvectors().col(0).normalized();
   return result;
+}
+
+}  // namespace
+
+ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud) {
+  return ComputeInformation(cloud, nullptr);
+}
+
+ScanInformation2D ComputeMatchedScanInformation2D(const ProbabilityGrid& grid,
+                                                  const common::Rigid2d& T_grid_scan,
+                                                  const sensor::PointCloud2d& cloud,
+                                                  float min_probability) {
+  const Eigen::Matrix2f rotation =
+      Eigen::Rotation2Df(static_cast<float>(T_grid_scan.angle_rad())).matrix();
+  const Eigen::Vector2f translation = T_grid_scan.translation().cast<float>();
+  std::vector<bool> confirmed(cloud.size());
+  for (size_t i = 0; i < cloud.size(); ++i) {
+    const Eigen::Array2i cell = grid.limits().GetCellIndex(rotation * cloud[i] + translation);
+    confirmed[i] = grid.GetProbabilityOr(cell, kMinProbability) >= min_probability;
+  }
+  return ComputeInformation(cloud, &confirmed);
 }
 
 }  // namespace mapping

@@ -124,9 +124,13 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
   constraint.T_submap_node = T_grid_submap.inverse() * refined;
   // Where the scan holds the match in one direction only (a corridor of plain walls), the
   // score was as high anywhere along the other: the constraint measures nothing there, and
-  // keeps the estimate's translation along it so that loops.tsv shows no invented slide.
+  // keeps the estimate's translation along it so that loops.tsv shows no invented slide. Only
+  // the structure the submap holds where the match put the scan counts: a scan at a corner
+  // whose submap saw just one of the corridors slides along that one (simulator corridor: node
+  // 863 matched 1.63 m along the south corridor into submap 0, which never saw the west one).
   if (options_.min_translation_information_ratio > 0.0) {
-    const mapping::ScanInformation2D information = mapping::ComputeScanInformation2D(cloud);
+    const mapping::ScanInformation2D information = mapping::ComputeMatchedScanInformation2D(
+        *grid, refined, cloud, mapping::kConfirmingProbability);
     if (information.TranslationRatio() < options_.min_translation_information_ratio) {
       const Eigen::Vector2d along_in_submap =
           constraint.T_submap_node.rotation() * information.weakest_direction;

@@ -32,7 +32,8 @@ std::vector<LoopClosure2D> PoseGraph2D::TakeNewLoopClosures() {
   for (int id : new_loop_closures_) {
     const Constraint2D* c = FindLoopLocked(id);
     if (c == nullptr) continue;  // removed or trimmed meanwhile
-    closures.push_back({id, c->node, c->submap, c->T_submap_node, c->laser_score});
+    closures.push_back(
+        {id, c->node, c->submap, c->T_submap_node, c->laser_score, c->unmeasured_direction});
   }
   new_loop_closures_.clear();
   return closures;

@@ -137,6 +137,7 @@ bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, bool graph_loops, con
     record.submap = c.submap;
     record.laser = visual_loop::LoopMeasurement2D{c.T_submap_node};
     record.laser->laser_score = c.laser_score;
+    record.laser->unmeasured_direction = c.unmeasured_direction;
     loops.push_back(record);
   }
   if (!io::WriteLoopsTsv(out + "loops.tsv", loops, error)) return false;

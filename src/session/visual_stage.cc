@@ -213,9 +213,9 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
   if (!visual) return;
   std::optional<visual_loop::LoopMeasurement2D> laser_measurement;
   if (laser) {
-    laser_measurement = visual_loop::LoopMeasurement2D{laser->T_submap_node,
-                                                       Eigen::Matrix3d::Identity(),
-                                                       laser->laser_score, 0};
+    laser_measurement =
+        visual_loop::LoopMeasurement2D{laser->T_submap_node, Eigen::Matrix3d::Identity(),
+                                       laser->laser_score, 0, laser->unmeasured_direction};
     const int id = laser->loop_id;
     laser_loops_.erase(std::remove_if(laser_loops_.begin(), laser_loops_.end(),
                                       [id](const pose_graph::LoopClosure2D& l) { return l.id == id; }),
@@ -255,7 +255,7 @@ void VisualStage::ProcessLaserLoops(bool all) {
 
 void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
   const visual_loop::LoopMeasurement2D laser{loop.T_submap_node, Eigen::Matrix3d::Identity(),
-                                             loop.laser_score, 0};
+                                             loop.laser_score, 0, loop.unmeasured_direction};
   std::optional<visual_loop::LoopMeasurement2D> visual;
   visual_loop::VisualCheck check = visual_loop::VisualCheck::kNotChecked;
   std::string check_reason;

@@ -71,6 +71,31 @@ TEST(ScoreLoopsTest, FlagsLoopsOffTheTruthAndCountsDecisions) {
   EXPECT_EQ(score.wrong_by_decision.count("visual_forced"), 0u);  // unscored
 }
 
+TEST(ScoreLoopsTest, ALoopHeldAcrossACorridorIsScoredAcrossIt) {
+  // Node 1 stands 10 m along a corridor (x) from node 0, which starts submap 0.
+  const Trajectory gt = FromPoses({{0, 0, 0}, {10, 0, 0}});
+  const Trajectory nodes = gt;
+  std::vector<SubmapAnchor> submaps = {{0, 0, common::Rigid2d::Identity()}};
+  // Both loops put node 1 0.5 m too far along x; the first measured only across (y).
+  std::vector<LoopRecord> loops(3);
+  loops[0] = {1, 0, "laser", 0.7, 0, "laser_kept", common::Rigid2d(10.5, 0.0, 0.0)};
+  loops[0].unmeasured_direction = Eigen::Vector2d(1.0, 0.0);
+  loops[1] = {1, 0, "laser", 0.7, 0, "laser_kept", common::Rigid2d(10.5, 0.0, 0.0)};
+  // Held across only, but off across it: wrong.
+  loops[2] = {1, 0, "laser", 0.7, 0, "laser_kept", common::Rigid2d(10.5, 0.4, 0.0)};
+  loops[2].unmeasured_direction = Eigen::Vector2d(-1.0, 0.0);
+  const LoopScore score = ScoreLoops(loops, submaps, nodes, gt, LoopScoreOptions());
+  ASSERT_EQ(score.loops.size(), 3u);
+  EXPECT_NEAR(score.loops[0].translation_error_m, 0.0, 1e-9);
+  EXPECT_FALSE(score.loops[0].wrong);
+  EXPECT_NEAR(score.loops[1].translation_error_m, 0.5, 1e-9);
+  EXPECT_TRUE(score.loops[1].wrong);
+  EXPECT_NEAR(score.loops[2].translation_error_m, 0.4, 1e-9);
+  EXPECT_TRUE(score.loops[2].wrong);
+  EXPECT_EQ(score.held_across_only, 2);
+  EXPECT_EQ(score.wrong_accepted, 2);
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace fusemap

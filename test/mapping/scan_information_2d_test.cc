@@ -67,6 +67,61 @@ TEST(ScanInformation2DTest, TheCorridorsEndGivesTheAxisBack) {
   EXPECT_GT(closed_info.TranslationRatio(), 0.02);
 }
 
+// A grid covering x, y in [-20, 20] m at 5 cm holding `walls` (cells away from them unknown).
+ProbabilityGrid GridOf(const std::vector<Segment>& walls) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-20.0, -20.0);
+  limits.num_x_cells = 800;
+  limits.num_y_cells = 800;
+  return test_world::DrawWalls(limits, walls, 0.3);
+}
+
+TEST(ScanInformation2DTest, StructureTheSubmapDoesNotHoldMeasuresNothing) {
+  // A scan at a corner (simulator corridor, node 863 of issue 17): the corridor along x and a
+  // second one going north from its west end. A submap that saw only the first corridor holds
+  // the match across it only, though the scan alone holds it every way.
+  const std::vector<Segment> first = {{Eigen::Vector2d(-2.0, -1.0), Eigen::Vector2d(20.0, -1.0)},
+                                      {Eigen::Vector2d(0.0, 1.0), Eigen::Vector2d(20.0, 1.0)}};
+  std::vector<Segment> both = first;
+  both.push_back({Eigen::Vector2d(-2.0, -1.0), Eigen::Vector2d(-2.0, 20.0)});
+  both.push_back({Eigen::Vector2d(0.0, 1.0), Eigen::Vector2d(0.0, 20.0)});
+  const common::Rigid2d T_world_scan(-1.0, 0.0, common::DegToRad(-60.0));
+  const sensor::PointCloud2d cloud = LoopClosureCloud(both, T_world_scan);
+  ASSERT_GT(ComputeScanInformation2D(cloud).TranslationRatio(), 0.05);
+  const ScanInformation2D seen_both =
+      ComputeMatchedScanInformation2D(GridOf(both), T_world_scan, cloud, kConfirmingProbability);
+  const ScanInformation2D seen_first =
+      ComputeMatchedScanInformation2D(GridOf(first), T_world_scan, cloud, kConfirmingProbability);
+  EXPECT_GT(seen_both.TranslationRatio(), 0.05);
+  EXPECT_LT(seen_first.TranslationRatio(), 0.02);
+  // Along the first corridor's axis, turned into the scan's frame.
+  const double axis_rad = common::DegToRad(60.0);
+  EXPECT_GT(std::abs(seen_first.weakest_direction.dot(
+                Eigen::Vector2d(std::cos(axis_rad), std::sin(axis_rad)))),
+            0.99);
+}
+
+TEST(ScanInformation2DTest, GapsInWhatTheSubmapHoldsInventNoStructure) {
+  // Regression (simulator corridor, 1.8 m between its walls, node 13 in submap 13): a submap
+  // holding the walls in pieces confirmed stretches of the scan with gaps between them; lines
+  // fitted among the confirmed points alone joined points across the corridor and made the
+  // match look held along it.
+  const std::vector<Segment> walls = {{Eigen::Vector2d(-20.0, -0.8), Eigen::Vector2d(20.0, -0.8)},
+                                      {Eigen::Vector2d(-20.0, 0.8), Eigen::Vector2d(20.0, 0.8)}};
+  std::vector<Segment> pieces;
+  for (double x = -20.0; x < 20.0; x += 3.0) {
+    pieces.push_back({Eigen::Vector2d(x, -0.8), Eigen::Vector2d(x + 0.5, -0.8)});
+    pieces.push_back({Eigen::Vector2d(x + 1.5, 0.8), Eigen::Vector2d(x + 2.0, 0.8)});
+  }
+  const common::Rigid2d T_world_scan(0.0, 0.1, common::DegToRad(20.0));
+  const sensor::PointCloud2d cloud = LoopClosureCloud(walls, T_world_scan);
+  const ScanInformation2D info =
+      ComputeMatchedScanInformation2D(GridOf(pieces), T_world_scan, cloud, kConfirmingProbability);
+  EXPECT_GT(info.points_on_lines, 0);
+  EXPECT_LT(info.TranslationRatio(), 0.01);
+}
+
 TEST(ScanInformation2DTest, ScatteredPointsOnNoLineGiveNothing) {
   // Three far-apart points: no point has neighbours within 2 m.
   const sensor::PointCloud2d cloud = {Eigen::Vector2f(0.f, 5.f), Eigen::Vector2f(5.f, 0.f),

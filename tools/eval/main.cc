@@ -70,9 +70,12 @@ constexpr char kLoopsUsage[] =
     "  Scores DIR/loops.tsv (node submap source laser_score visual_inliers decision x y yaw)\n"
     "  against the ground truth, using DIR/nodes.tum (node stamps, by index) and\n"
     "  DIR/submaps.tsv (submap first_node x y yaw). A loop is wrong when its relative pose is\n"
-    "  off the truth by more than --max-error-m (default 0.3) or --max-error-deg (default 3).\n"
-    "  --verbose           a line per loop: node submap source decision err_m err_deg wrong\n"
-    "Prints decisions=NAME:COUNT,... and wrong_by_decision=NAME:COUNT,... then, last,\n"
+    "  off the truth by more than --max-error-m (default 0.3) or --max-error-deg (default 3);\n"
+    "  for a laser loop held across a corridor only (loops.tsv unmeasured_x, unmeasured_y not\n"
+    "  0) only the error across it counts: along it the pose is the graph's estimate.\n"
+    "  --verbose           a line per loop: node submap source decision held err_m err_deg wrong\n"
+    "Prints decisions=NAME:COUNT,..., wrong_by_decision=NAME:COUNT,... and\n"
+    "held_across_only=K (scored loops held across a corridor only), then, last,\n"
     "loops=N accepted=A wrong_accepted=W wrong_rejected=R unscored=U\n";
 
 using common::CommandLine;
@@ -256,14 +259,18 @@ int Loops(const LoopsArgs& args) {
   const eval::LoopScore score = eval::ScoreLoops(loops, submaps, nodes, gt, args.options);
   if (args.verbose) {
     for (const eval::ScoredLoop& l : score.loops) {
-      std::printf("loop node=%d submap=%d source=%s decision=%s err_m=%.3f err_deg=%.2f wrong=%s\n",
-                  l.loop.node, l.loop.submap, l.loop.source.c_str(), l.loop.decision.c_str(),
-                  l.translation_error_m, l.rotation_error_deg,
+      std::printf(
+          "loop node=%d submap=%d source=%s decision=%s held=%s err_m=%.3f err_deg=%.2f "
+          "wrong=%s\n",
+          l.loop.node, l.loop.submap, l.loop.source.c_str(), l.loop.decision.c_str(),
+          l.loop.unmeasured_direction.isZero() ? "all" : "across", l.translation_error_m,
+          l.rotation_error_deg,
                   !l.scored ? "unscored" : (l.wrong ? "yes" : "no"));
     }
   }
   std::printf("decisions=%s\n", CountsList(score.by_decision).c_str());
   std::printf("wrong_by_decision=%s\n", CountsList(score.wrong_by_decision).c_str());
+  std::printf("held_across_only=%d\n", score.held_across_only);
   std::printf("loops=%zu accepted=%d wrong_accepted=%d wrong_rejected=%d unscored=%d\n",
               score.loops.size(), score.accepted, score.wrong_accepted, score.wrong_rejected,
               score.unscored);

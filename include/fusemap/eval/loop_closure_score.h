@@ -31,6 +31,8 @@ struct LoopRecord {
   int visual_inliers = 0;
   std::string decision;
   common::Rigid2d T_submap_node;
+  // Node frame; zero when the loop measured every way (loops.tsv unmeasured_x, unmeasured_y).
+  Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
 };
 
 // Where a submap's frame is: its final map pose and the node whose insertion started it
@@ -65,12 +67,15 @@ struct LoopScore {
   int wrong_accepted = 0;
   int wrong_rejected = 0;  // wrong measurements the decision kept out of the graph
   int unscored = 0;
+  // Scored loops that held the node across a corridor only: their error along it not counted.
+  int held_across_only = 0;
 };
 
 // A loop counts as accepted unless its decision says it was rejected ("…rejected").
 bool IsAcceptedDecision(const std::string& decision);
 
-// The implied relative pose of each loop against the truth: the true T_submap_node is
+// The implied relative pose of each loop against the truth (across the corridor only for a
+// loop with an unmeasured direction): the true T_submap_node is
 // T_submap_anchor * T_world_anchor^-1 * T_world_node with T_world_* from gt at the nodes'
 // stamps and T_submap_anchor from the estimate (local, accurate even when the loop is not).
 // `nodes` are the estimated node poses in index order (DIR/nodes.tum).

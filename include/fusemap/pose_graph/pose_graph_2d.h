@@ -75,6 +75,9 @@ struct LoopClosure2D {
   int submap = 0;
   common::Rigid2d T_submap_node;
   double laser_score = 0.0;
+  // Constraint2D::unmeasured_direction: zero unless the scan held the match across a
+  // corridor only.
+  Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
 };
 
 // A loop constraint measured outside the graph (the visual loop checker): node in submap,

@@ -18,6 +18,10 @@ struct LoopMeasurement2D {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
   double laser_score = 0.0;  // laser only
   int visual_inliers = 0;    // visual only
+  // Laser only: the unit vector, in the node's frame, along which the match measured nothing
+  // (a corridor of plain walls; pose_graph::Constraint2D::unmeasured_direction). There the
+  // translation is the graph's estimate, not a measurement. Zero when it measures every way.
+  Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
 };
 
 // What the camera said about a place the laser closed on.

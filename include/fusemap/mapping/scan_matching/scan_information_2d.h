@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include "fusemap/common/rigid_transform.h"
+#include "fusemap/mapping/probability_grid.h"
 #include "fusemap/sensor/sensor_types.h"
 
 namespace fusemap {
@@ -36,6 +38,20 @@ struct ScanInformation2D {
 // it and its 4 nearest neighbours within 2 m (sparse, voxel-filtered clouds included) and counts
 // when they spread along one direction at least 10 times more than across it.
 ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud);
+
+// A cell more likely occupied than free confirms the scan point that lands on it.
+constexpr float kConfirmingProbability = 0.5f;
+
+// The same over the points the map confirms: those that land, at the matched pose T_grid_scan,
+// on cells at least min_probability likely occupied (kConfirmingProbability). Structure the
+// scan sees and the map does not hold (a side corridor the submap never saw) measures nothing
+// in that match; a scan whose only confirmed structure is two parallel walls is a corridor
+// scan whatever else it saw. Lines are fitted among all the scan's points, so that the map only
+// removes structure, never adds it.
+ScanInformation2D ComputeMatchedScanInformation2D(const ProbabilityGrid& grid,
+                                                  const common::Rigid2d& T_grid_scan,
+                                                  const sensor::PointCloud2d& cloud,
+                                                  float min_probability);
 
 }  // namespace mapping
 }  // namespace fusemap
