@@ -264,8 +264,7 @@ int Loops(const LoopsArgs& args) {
           "wrong=%s\n",
           l.loop.node, l.loop.submap, l.loop.source.c_str(), l.loop.decision.c_str(),
           l.loop.unmeasured_direction.isZero() ? "all" : "across", l.translation_error_m,
-          l.rotation_error_deg,
-                  !l.scored ? "unscored" : (l.wrong ? "yes" : "no"));
+          l.rotation_error_deg, !l.scored ? "unscored" : (l.wrong ? "yes" : "no"));
     }
   }
   std::printf("decisions=%s\n", CountsList(score.by_decision).c_str());
