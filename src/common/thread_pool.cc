@@ -32,6 +32,14 @@ void ThreadPool::Schedule(std::function<void()> task) {
   work_available_.notify_one();
 }
 
+void ThreadPool::ScheduleFirst(std::function<void()> task) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tasks_.push_front(std::move(task));
+  }
+  work_available_.notify_one();
+}
+
 void ThreadPool::WaitIdle() {
   std::unique_lock<std::mutex> lock(mutex_);
   idle_.wait(lock, [this] { return tasks_.empty() && running_ == 0; });

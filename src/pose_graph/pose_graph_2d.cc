@@ -93,6 +93,11 @@ int PoseGraph2D::AddNode(
     double stamp_s, const common::Rigid2d& T_local_node, const sensor::PointCloud2d& filtered_cloud,
     const std::vector<std::shared_ptr<const mapping::Submap2D>>& insertion_submaps) {
   std::vector<std::function<void()>> tasks;
+  // Compaction and the optimisation (with the trimming it runs) go ahead of queued searches:
+  // behind a backlog of thousands of them (a log played faster than real time) they waited
+  // for minutes, and uncompacted and untrimmed submaps piled up (intel played six times: 87
+  // submaps held, 43 MB of grids, RSS rising 118 -> 250 MB).
+  std::vector<std::function<void()>> upkeep;
   int node;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -149,7 +154,7 @@ int PoseGraph2D::AddNode(
       const std::vector<int>& now = nodes_.back().inserted_into;
       const SubmapData& data = submaps_[s];
       if (data.finished && !data.trimmed && std::find(now.begin(), now.end(), s) == now.end()) {
-        tasks.push_back([submap = data.submap] { submap->Compact(); });
+        upkeep.push_back([submap = data.submap] { submap->Compact(); });
       }
     }
     if (options_.optimize_every_n_nodes != 0) {
@@ -161,8 +166,7 @@ int PoseGraph2D::AddNode(
           !optimization_running_) {
         nodes_since_optimization_ = 0;
         optimization_running_ = true;
-        pending_tasks_.push_back(
-            [this] { RunOptimization(options_.optimization.max_num_iterations); });
+        upkeep.push_back([this] { RunOptimization(options_.optimization.max_num_iterations); });
       }
       tasks.insert(tasks.end(), pending_tasks_.begin(), pending_tasks_.end());
       pending_tasks_.clear();
@@ -170,6 +174,7 @@ int PoseGraph2D::AddNode(
   }
   // Scheduled outside the lock: an inline executor runs the task right here.
   for (auto& task : tasks) executor_->Schedule(std::move(task));
+  for (auto& task : upkeep) executor_->ScheduleFirst(std::move(task));
   return node;
 }
 

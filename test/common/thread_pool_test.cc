@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <future>
 #include <mutex>
 #include <set>
 #include <thread>
+#include <vector>
 
 namespace fusemap {
 namespace common {
@@ -67,11 +69,41 @@ TEST(ThreadPoolTest, WorkerStartHookRunsOnEachWorkerBeforeItsFirstTask) {
   EXPECT_EQ(started.count(std::this_thread::get_id()), 0u);
 }
 
+TEST(ThreadPoolTest, ScheduleFirstRunsAheadOfWaitingTasks) {
+  ThreadPool pool(1);
+  std::promise<void> release;
+  std::shared_future<void> released = release.get_future().share();
+  std::promise<void> started;
+  // The one worker is held inside the first task while the others queue up.
+  pool.Schedule([&started, released] {
+    started.set_value();
+    released.wait();
+  });
+  started.get_future().wait();
+  std::mutex mutex;
+  std::vector<int> order;
+  const auto record = [&mutex, &order](int id) {
+    return [&mutex, &order, id] {
+      std::lock_guard<std::mutex> lock(mutex);
+      order.push_back(id);
+    };
+  };
+  pool.Schedule(record(1));
+  pool.Schedule(record(2));
+  pool.ScheduleFirst(record(3));
+  pool.ScheduleFirst(record(4));
+  release.set_value();
+  pool.WaitIdle();
+  EXPECT_EQ(order, (std::vector<int>{4, 3, 1, 2}));
+}
+
 TEST(InlineExecutorTest, RunsImmediately) {
   InlineExecutor executor;
   int x = 0;
   executor.Schedule([&] { x = 3; });
   EXPECT_EQ(x, 3);
+  executor.ScheduleFirst([&] { x = 4; });
+  EXPECT_EQ(x, 4);
 }
 
 }  // namespace

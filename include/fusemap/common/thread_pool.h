@@ -19,6 +19,10 @@ class Executor {
  public:
   virtual ~Executor() = default;
   virtual void Schedule(std::function<void()> task) = 0;
+  // As Schedule, but ahead of every task still waiting: for upkeep (freeing memory, the
+  // optimisation and the trimming it runs) that must not queue behind a backlog of searches.
+  // Executors without a queue run it as Schedule does.
+  virtual void ScheduleFirst(std::function<void()> task) { Schedule(std::move(task)); }
   // Blocks until every task scheduled so far has finished.
   virtual void WaitIdle() = 0;
 };
@@ -29,7 +33,8 @@ class InlineExecutor : public Executor {
   void WaitIdle() override {}
 };
 
-// Fixed-size pool; tasks run in FIFO order on whichever worker is free. `on_worker_start`, if
+// Fixed-size pool; tasks run in FIFO order (ScheduleFirst's at the front) on whichever worker
+// is free. `on_worker_start`, if
 // given, runs first on each worker's own thread (fusemapd lowers the workers' priority there,
 // so that background searches never take the CPU from pose publication).
 class ThreadPool : public Executor {
@@ -40,6 +45,7 @@ class ThreadPool : public Executor {
   ThreadPool& operator=(const ThreadPool&) = delete;
 
   void Schedule(std::function<void()> task) override;
+  void ScheduleFirst(std::function<void()> task) override;
   void WaitIdle() override;
 
  private:
