@@ -34,9 +34,9 @@ class InlineExecutor : public Executor {
 };
 
 // Fixed-size pool; tasks run in FIFO order (ScheduleFirst's at the front) on whichever worker
-// is free. `on_worker_start`, if
-// given, runs first on each worker's own thread (fusemapd lowers the workers' priority there,
-// so that background searches never take the CPU from pose publication).
+// is free. `on_worker_start`, if given, runs first on each worker's own thread (fusemapd lowers
+// the workers' priority there, so that background searches never take the CPU from pose
+// publication).
 class ThreadPool : public Executor {
  public:
   explicit ThreadPool(int num_threads, std::function<void()> on_worker_start = {});
