@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <limits>
 
 #include "fusemap/pose_graph/sparse_pose_adjustment_2d.h"
@@ -144,7 +145,7 @@ int PoseGraph2D::AddNode(
         submaps_[s].finished = true;
         ++stats_.finished_submaps;
         if (options_.optimize_every_n_nodes == 0) continue;
-        tasks.push_back(MakeMatcherTask(s, submap, true, {}));
+        upkeep.push_back(MakeMatcherTask(s, submap, true, {}));
       }
     }
     // Finished submaps are held for the whole run but read only to precompute, trim and draw:
@@ -170,6 +171,8 @@ int PoseGraph2D::AddNode(
       }
       tasks.insert(tasks.end(), pending_tasks_.begin(), pending_tasks_.end());
       pending_tasks_.clear();
+      upkeep.insert(upkeep.end(), pending_first_tasks_.begin(), pending_first_tasks_.end());
+      pending_first_tasks_.clear();
     }
   }
   // Scheduled outside the lock: an inline executor runs the task right here.
@@ -234,8 +237,14 @@ void PoseGraph2D::ScheduleSearchLocked(int node, int submap) {
   ++submap_data.sampler_pulses;
   if (!submap_data.sampler.Pulse()) return;
   if (static_cast<int>(searches_in_flight_.size()) >= options_.max_pending_searches) {
+    // The queue is full: this search takes the place of the least valuable ready one, if that
+    // is worth less (an older node's).
     ++stats_.searches_skipped;
-    return;
+    if (ready_searches_.empty()) return;
+    const auto worst = std::prev(ready_searches_.end());
+    if (!(ReadyKey{-node, next_search_id_} < worst->first)) return;
+    searches_in_flight_.erase(worst->first.second);
+    ready_searches_.erase(worst);
   }
   QueueSearchLocked({node, submap, T_submap_node});
 }
@@ -248,48 +257,84 @@ void PoseGraph2D::QueueSearchLocked(const PendingSearch2D& search) {
   SubmapData& data = submaps_[search.submap];
   data.last_used = ++use_clock_;
   if (data.matcher) {
-    pending_tasks_.push_back(SearchTaskLocked(id, search));
+    MakeSearchReadyLocked(id, search);
     return;
   }
   // Released to stay within the memory budget (or not built yet): the search waits for it.
+  WaitForMatcherLocked(id, search);
+}
+
+void PoseGraph2D::WaitForMatcherLocked(std::uint64_t id, const PendingSearch2D& search) {
+  SubmapData& data = submaps_[search.submap];
   data.waiting.emplace_back(id, search);
   if (!data.rebuilding) {
     data.rebuilding = true;
-    pending_tasks_.push_back(MakeMatcherTask(search.submap, data.submap, false, {}));
+    pending_first_tasks_.push_back(MakeMatcherTask(search.submap, data.submap, false, {}));
   }
 }
 
-std::function<void()> PoseGraph2D::SearchTaskLocked(std::uint64_t id,
-                                                    const PendingSearch2D& search) {
-  auto matcher = submaps_[search.submap].matcher;
-  auto cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
-  return [this, matcher, cloud, search, id] {
-    const auto start = std::chrono::steady_clock::now();
-    double score = 0.0;
-    std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
+void PoseGraph2D::MakeSearchReadyLocked(std::uint64_t id, const PendingSearch2D& search) {
+  ready_searches_[{-search.node, id}] = search;
+  // As many tasks handed out as searches are ready, so every ready search runs; which one each
+  // task runs is decided when it starts. Searches dropped meanwhile (trimmed, displaced) leave
+  // their tasks to the next ones.
+  if (search_tasks_outstanding_ < ready_searches_.size()) {
+    ++search_tasks_outstanding_;
+    pending_tasks_.push_back([this] { RunBestSearch(); });
+  }
+}
+
+void PoseGraph2D::RunBestSearch() {
+  std::uint64_t id = 0;
+  PendingSearch2D search;
+  std::shared_ptr<const LoopClosureMatcher2D> matcher;
+  std::shared_ptr<const sensor::PointCloud2d> cloud;
+  std::vector<std::function<void()>> first_tasks;
+  {
     std::lock_guard<std::mutex> lock(mutex_);
-    searches_in_flight_.erase(id);
-    stats_.loop_closure_search_s += SecondsSince(start);
-    ++stats_.loop_closure_searches;
-    // The trimmer may have dropped either end while the search ran.
-    if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
-    if (!DriftExplainsCorrection(search.T_submap_node, constraint->T_submap_node,
-                                 PathBetweenLocked(search.node, search.submap),
-                                 options_.constraint_builder)) {
-      ++stats_.loop_closures_beyond_drift;
-      return;
+    --search_tasks_outstanding_;
+    while (!matcher && !ready_searches_.empty()) {
+      const auto best = ready_searches_.begin();
+      id = best->first.second;
+      search = best->second;
+      ready_searches_.erase(best);
+      matcher = submaps_[search.submap].matcher;
+      // Released to stay within the memory budget since it was queued: it waits for the
+      // rebuild (holding the released grids here would let them outgrow the budget).
+      if (!matcher) WaitForMatcherLocked(id, search);
     }
-    if (!EvidenceSupportsCorrection(search.T_submap_node, constraint->T_submap_node,
-                                    constraint->evidence_z, options_.constraint_builder)) {
-      ++stats_.loop_closures_ambiguous;
-      return;
+    if (matcher) {
+      cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
     }
-    constraint->submap = search.submap;
-    constraint->node = search.node;
-    constraint->laser_score = score;
-    if (!constraint->unmeasured_direction.isZero()) ++stats_.loop_closures_degenerate;
-    AddLoopClosureLocked(*constraint);
-  };
+    first_tasks.swap(pending_first_tasks_);
+  }
+  for (auto& task : first_tasks) executor_->ScheduleFirst(std::move(task));
+  if (!matcher) return;
+  const auto start = std::chrono::steady_clock::now();
+  double score = 0.0;
+  std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
+  std::lock_guard<std::mutex> lock(mutex_);
+  searches_in_flight_.erase(id);
+  stats_.loop_closure_search_s += SecondsSince(start);
+  ++stats_.loop_closure_searches;
+  // The trimmer may have dropped either end while the search ran.
+  if (!constraint || submaps_[search.submap].trimmed || NodeGoneLocked(search.node)) return;
+  if (!DriftExplainsCorrection(search.T_submap_node, constraint->T_submap_node,
+                               PathBetweenLocked(search.node, search.submap),
+                               options_.constraint_builder)) {
+    ++stats_.loop_closures_beyond_drift;
+    return;
+  }
+  if (!EvidenceSupportsCorrection(search.T_submap_node, constraint->T_submap_node,
+                                  constraint->evidence_z, options_.constraint_builder)) {
+    ++stats_.loop_closures_ambiguous;
+    return;
+  }
+  constraint->submap = search.submap;
+  constraint->node = search.node;
+  constraint->laser_score = score;
+  if (!constraint->unmeasured_direction.isZero()) ++stats_.loop_closures_degenerate;
+  AddLoopClosureLocked(*constraint);
 }
 
 void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher) {
@@ -355,7 +400,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
     const auto start = std::chrono::steady_clock::now();
     auto matcher =
         std::make_shared<const LoopClosureMatcher2D>(submap, options_.constraint_builder);
-    std::vector<std::function<void()>> tasks;
+    std::vector<std::function<void()>> tasks, first_tasks;
     {
       std::lock_guard<std::mutex> lock(mutex_);
       stats_.precomputation_s += SecondsSince(start);
@@ -365,9 +410,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
       InstallMatcherLocked(s, matcher);
       data.searchable = true;
       for (const auto& [id, search] : data.waiting) {
-        if (searches_in_flight_.count(id) != 0) {
-          pending_tasks_.push_back(SearchTaskLocked(id, search));
-        }
+        if (searches_in_flight_.count(id) != 0) MakeSearchReadyLocked(id, search);
       }
       data.waiting.clear();
       for (const auto& search : searches) QueueSearchLocked(search);
@@ -375,8 +418,10 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
         for (size_t n = 0; n < nodes_.size(); ++n) ScheduleSearchLocked(nodes_[n].index, s);
       }
       tasks.swap(pending_tasks_);
+      first_tasks.swap(pending_first_tasks_);
     }
     for (auto& task : tasks) executor_->Schedule(std::move(task));
+    for (auto& task : first_tasks) executor_->ScheduleFirst(std::move(task));
   };
 }
 
@@ -543,6 +588,10 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
   const auto node_trimmed = [this](const Constraint2D& c) { return NodeGoneLocked(c.node); };
   constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(), node_trimmed),
                      constraints_.end());
+  for (auto it = ready_searches_.begin(); it != ready_searches_.end();) {
+    const PendingSearch2D& search = it->second;
+    it = PairHeldLocked(search.node, search.submap) ? std::next(it) : ready_searches_.erase(it);
+  }
   for (auto it = searches_in_flight_.begin(); it != searches_in_flight_.end();) {
     if (submaps_[it->second.submap].trimmed || NodeGoneLocked(it->second.node)) {
       it = searches_in_flight_.erase(it);

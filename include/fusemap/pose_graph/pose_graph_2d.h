@@ -283,6 +283,12 @@ class PoseGraph2D {
     std::vector<double> solved_closure_paths_m;
   };
 
+  // Ready searches (ready_searches_), best first: the newest node first, then first come. Behind
+  // a backlog the closures of the node just added are worth the most: they tie where the robot
+  // is now to the old map, which is what lets the trimmer release the old submaps; a search of
+  // a node long past is about a stretch later closures have tied since. (-node, id).
+  using ReadyKey = std::pair<int, std::uint64_t>;
+
   int SubmapIndexLocked(const std::shared_ptr<const mapping::Submap2D>& submap,
                         const common::Rigid2d& T_map_local);
   // Path travelled between node `node` (held) and the nearest node inserted into `submap`:
@@ -295,8 +301,13 @@ class PoseGraph2D {
   // Queues a loop-closure search of `node` in `submap` if they are close and sampled.
   void ScheduleSearchLocked(int node, int submap);
   void QueueSearchLocked(const PendingSearch2D& search);
-  // The task that runs search `id` with the submap's matcher, which must be held.
-  std::function<void()> SearchTaskLocked(std::uint64_t id, const PendingSearch2D& search);
+  // Search `id` waits for its submap's matcher, which is rebuilt if it is not being built.
+  void WaitForMatcherLocked(std::uint64_t id, const PendingSearch2D& search);
+  // Makes search `id`, whose submap's matcher is held, ready to run, and hands the executor a
+  // task that runs the best ready search (RunBestSearch).
+  void MakeSearchReadyLocked(std::uint64_t id, const PendingSearch2D& search);
+  // Runs the ready search of the highest priority (ReadyKey), if any is left.
+  void RunBestSearch();
   // Installs a just built matcher for submap `s`, then releases the least recently used
   // others while the grids held exceed the budget.
   void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
@@ -348,10 +359,15 @@ class PoseGraph2D {
   // TakeSubmapPlacements: the poses it handed out, and the solves they reflect.
   std::vector<common::Rigid2d> T_map_submaps_placed_;  // guarded by mutex_
   std::uint64_t placed_solve_count_ = 0;               // guarded by mutex_
-  // Work found while holding mutex_, handed to the executor once it is released.
-  std::vector<std::function<void()>> pending_tasks_;  // guarded by mutex_
-  // Searches handed to the executor and not yet finished, by a running id.
+  // Work found while holding mutex_, handed to the executor once it is released: searches at
+  // the back of its queue, precomputation (which the searches of a submap wait for) at the front.
+  std::vector<std::function<void()>> pending_tasks_;        // guarded by mutex_
+  std::vector<std::function<void()>> pending_first_tasks_;  // guarded by mutex_
+  // RunBestSearch tasks handed out and not yet started.
+  size_t search_tasks_outstanding_ = 0;  // guarded by mutex_
+  // Searches queued and not yet finished, by a running id: ready or waiting for a matcher.
   std::map<std::uint64_t, PendingSearch2D> searches_in_flight_;  // guarded by mutex_
+  std::map<ReadyKey, PendingSearch2D> ready_searches_;  // guarded by mutex_
   std::uint64_t next_search_id_ = 0;                             // guarded by mutex_
   std::uint64_t use_clock_ = 0;                                  // guarded by mutex_
   size_t matcher_bytes_ = 0;  // guarded by mutex_, of the matchers held
