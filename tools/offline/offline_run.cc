@@ -94,6 +94,8 @@ int Run(const Args& args) {
 
   std::vector<double> scan_cost_ms;
   std::vector<double> rss_mb;  // every kRssSampleScans scans
+  // Global SLAM's grids and clouds at the same moments: what of the RSS the graph holds.
+  std::vector<double> graph_mb, matcher_mb;
   int scans = 0, rgbd_frames = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
   double first_stamp_s = 0.0, last_stamp_s = 0.0;
   bool have_stamp = false;
@@ -133,6 +135,10 @@ int Run(const Args& args) {
       ++scans;
       if (scans % kRssSampleScans == 0) {
         rss_mb.push_back(static_cast<double>(common::ResidentMemoryBytes()) / 1048576.0);
+        const auto graph = session.builder().pose_graph().stats();
+        matcher_mb.push_back(graph.matcher_bytes / 1048576.0);
+        graph_mb.push_back((graph.submap_bytes + graph.matcher_bytes + graph.node_bytes) /
+                           1048576.0);
       }
     } else if (const auto* odometry = std::get_if<sensor::OdometryData>(&message)) {
       session.AddOdometry(*odometry);
@@ -298,10 +304,15 @@ int Run(const Args& args) {
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
-  std::string rss_line;
-  for (double mb : rss_mb) rss_line += " " + std::to_string(static_cast<int>(mb + 0.5));
+  const auto samples = [](const std::vector<double>& mb) {
+    std::string line;
+    for (double value : mb) line += " " + std::to_string(static_cast<int>(value + 0.5));
+    return line.empty() ? std::string(" none") : line;
+  };
   std::printf("rss_mb_over_time: every_scans=%d end_of_slam=%.0f samples=%s\n", kRssSampleScans,
-              end_of_slam_rss_mb, rss_line.empty() ? " none" : rss_line.c_str());
+              end_of_slam_rss_mb, samples(rss_mb).c_str());
+  std::printf("graph_mb_over_time: every_scans=%d samples=%s matcher_samples=%s\n",
+              kRssSampleScans, samples(graph_mb).c_str(), samples(matcher_mb).c_str());
   // Whether the cost of a scan grows with the map: the first and the last 1,000 scans (the
   // same scans twice on a shorter log).
   const size_t window = std::min<size_t>(1000, scan_cost_ms.size());
