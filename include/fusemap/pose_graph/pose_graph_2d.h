@@ -38,10 +38,10 @@ struct PoseGraphOptions2D {
   // it, the grids of the submaps least recently searched are released and rebuilt when a
   // search needs them again: a campus has tens of submaps of several MB each, and a search
   // reaches only the few within max_constraint_distance_m.
-  double matcher_memory_budget_mb = 64.0;
-  // Loop-closure searches queued at once. A search that would queue beyond it is skipped (and
-  // counted): a daemon whose searches cannot keep up with the data drops some, rather than
-  // fall further behind without bound. Far above what the shared logs queue (see README).
+  double matcher_memory_budget_mb = 32.0;
+  // Loop-closure searches queued at once. Beyond it the oldest node's search is dropped (and
+  // counted): a daemon whose searches cannot keep up with the data drops stale ones, rather
+  // than fall further behind without bound.
   int max_pending_searches = 2000;
   OverlappingSubmapsTrimmerOptions2D overlapping_submaps_trimmer;  // off by default
   LoopClosureVerificationOptions2D loop_closure_verification;      // off by default
