@@ -588,17 +588,15 @@ void PoseGraph2D::TrimLocked(const std::vector<int>& submaps) {
   const auto node_trimmed = [this](const Constraint2D& c) { return NodeGoneLocked(c.node); };
   constraints_.erase(std::remove_if(constraints_.begin(), constraints_.end(), node_trimmed),
                      constraints_.end());
-  for (auto it = ready_searches_.begin(); it != ready_searches_.end();) {
-    const PendingSearch2D& search = it->second;
-    it = PairHeldLocked(search.node, search.submap) ? std::next(it) : ready_searches_.erase(it);
-  }
-  for (auto it = searches_in_flight_.begin(); it != searches_in_flight_.end();) {
-    if (submaps_[it->second.submap].trimmed || NodeGoneLocked(it->second.node)) {
-      it = searches_in_flight_.erase(it);
-    } else {
-      ++it;
+  // Queued searches of a dropped pair go: ready ones (by their key) and all in flight.
+  const auto drop_unheld = [this](auto& searches) {
+    for (auto it = searches.begin(); it != searches.end();) {
+      const PendingSearch2D& search = it->second;
+      it = PairHeldLocked(search.node, search.submap) ? std::next(it) : searches.erase(it);
     }
-  }
+  };
+  drop_unheld(ready_searches_);
+  drop_unheld(searches_in_flight_);
 }
 
 void PoseGraph2D::AddSubmapsMovedCallback(SubmapsMovedCallback callback) {
