@@ -4,10 +4,14 @@
 # asan: configures build-asan with -DFUSEMAP_SANITIZE=address,undefined (ASan + UBSan, UBSan
 #       aborting at its first report), builds everything, runs the whole ctest suite, then the
 #       demo (tools/demo.sh, outputs in build-asan/demo).
-# tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd and fusemap_sim,
-#       simulates 6 s of the hall (fusemap_sim --threads 2) and replays it through fusemapd --threads 2 from
-#       file://...?speed=0 (outputs in build-tsan/replay), then once more with the ORB visual
-#       loop checker on (visual_loop.enabled: its own thread; outputs in build-tsan/replay/visual).
+# tsan: configures build-tsan with -DFUSEMAP_SANITIZE=thread, builds fusemapd, fusemap_sim and
+#       fusemap_offline, simulates 6 s of the hall (fusemap_sim --threads 2) and replays it
+#       through fusemapd --threads 2 from file://...?speed=0 (outputs in build-tsan/replay), then
+#       once more with the ORB visual loop checker on (visual_loop.enabled: its own thread;
+#       outputs in build-tsan/replay/visual), then maps two laps of the hall (125 s, no camera)
+#       with fusemap_offline --threads 2 as fast as it runs, with room for 100 queued searches
+#       and 2 MB of grids: searches displaced from a full queue, grids released and rebuilt,
+#       submaps trimmed (build-tsan/replay/offline).
 # ASan, LSan and TSan reports are written to BUILD/sanitizer-logs/ (so one in a child whose
 # exit code a test expects to be nonzero still counts), UBSan ones to stderr with exit code 86.
 # The run fails if any report was written or any step failed. Exit codes: 0 clean, 1 a step
@@ -18,7 +22,7 @@ mode=${1:-asan}
 case "$mode" in
   asan) build_dir=build-asan sanitize=address,undefined ;;
   tsan) build_dir=build-tsan sanitize=thread ;;
-  --help | -h) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help | -h) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
   *) echo "usage: bash tools/run_sanitizers.sh [asan|tsan]" >&2; exit 2 ;;
 esac
 launcher=()
@@ -48,7 +52,7 @@ if [ "$mode" = asan ]; then
   echo "== demo (ASan + UBSan)"
   FUSEMAP_BUILD_DIR=$build_dir FUSEMAP_DEMO_OUT=$build_dir/demo bash tools/demo.sh || status=1
 else
-  cmake --build "$build_dir" -j"$jobs" --target fusemapd fusemap_sim_tool
+  cmake --build "$build_dir" -j"$jobs" --target fusemapd fusemap_sim_tool fusemap_offline
   out=$build_dir/replay
   rm -rf "$out"
   echo "== simulating 6 s (laser, odometry, IMU, RGB-D)"
@@ -65,6 +69,16 @@ else
   "$build_dir/tools/fusemapd/fusemapd" --config "$out/daemon_visual.yaml" \
     --lcm-url "file://$PWD/$out/sim.lcm?speed=0" --out "$out/visual" --threads 2 --quiet ||
     status=1
+  echo "== fusemap_offline --threads 2 over two laps of the hall, queue and grid budget tight (TSan)"
+  # At full speed the searches fall behind; a small queue and budget make the search scheduler
+  # drop, release and rebuild (config/sim.yaml sets neither key, so they are added).
+  "$build_dir/tools/sim/fusemap_sim" --world data/worlds/hall.yaml --seconds 125 --seed 1 \
+    --threads 2 --no-rgbd --out "$out/laps" | tail -1 || status=1
+  sed 's/^global_slam:$/global_slam:\n  max_pending_searches: 100\n  matcher_memory_budget_mb: 2.0/' \
+    config/sim.yaml >"$out/offline_tight.yaml"
+  "$build_dir/tools/offline/fusemap_offline" --log "$out/laps/sim.lcm" \
+    --config "$out/offline_tight.yaml" --out "$out/offline" --threads 2 --quiet --no-cloud |
+    grep -E '^global_slam_memory:' || status=1
 fi
 
 if [ -f "$build_dir/Testing/Temporary/LastTest.log" ]; then
