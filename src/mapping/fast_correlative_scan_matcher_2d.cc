@@ -59,6 +59,20 @@ bool FastCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
                                    pose);
 }
 
+double FastCorrelativeScanMatcher2D::ScoreAt(const common::Rigid2d& pose,
+                                             const sensor::PointCloud2d& cloud) const {
+  if (cloud.empty()) return 0.0;
+  const Eigen::Matrix2f rotation =
+      Eigen::Rotation2Df(static_cast<float>(pose.angle_rad())).matrix();
+  const Eigen::Vector2f translation = pose.translation().cast<float>();
+  const PrecomputationGrid2D& grid = grids_.Get(0);
+  long value_sum = 0;
+  for (const Eigen::Vector2f& point : cloud) {
+    value_sum += grid.GetValue(limits_.GetCellIndex(rotation * point + translation));
+  }
+  return PrecomputationScore(value_sum, static_cast<int>(cloud.size()));
+}
+
 bool FastCorrelativeScanMatcher2D::MatchFullSubmap(const sensor::PointCloud2d& cloud,
                                                    double min_score, double* score,
                                                    common::Rigid2d* pose) const {

@@ -34,6 +34,8 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
   check->Require(max_unevidenced_correction_m >= 0.0, "max_unevidenced_correction_m",
                  "must be >= 0");
   check->Require(min_correction_evidence_z >= 0.0, "min_correction_evidence_z", "must be >= 0");
+  check->Require(min_score_of_own_fit >= 0.0 && min_score_of_own_fit <= 1.0,
+                 "min_score_of_own_fit", "must be in [0, 1]");
   check->Nested("fast_correlative_scan_matcher", fast_correlative_scan_matcher);
   check->Nested("ceres_scan_matcher", ceres_scan_matcher);
 }
@@ -53,6 +55,7 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   reader.Get("max_correction_per_path_m", &options.max_correction_per_path_m);
   reader.Get("max_unevidenced_correction_m", &options.max_unevidenced_correction_m);
   reader.Get("min_correction_evidence_z", &options.min_correction_evidence_z);
+  reader.Get("min_score_of_own_fit", &options.min_score_of_own_fit);
   options.fast_correlative_scan_matcher = mapping::ParseFastCorrelativeScanMatcherOptions2D(
       reader.Child("fast_correlative_scan_matcher"));
   if (reader.Has("ceres_scan_matcher")) {
@@ -90,6 +93,14 @@ bool EvidenceSupportsCorrection(const common::Rigid2d& T_submap_node_estimate,
          evidence_z >= options.min_correction_evidence_z;
 }
 
+double MinScoreForOwnFit(double own_fit, const ConstraintBuilderOptions2D& options) {
+  const double min_score = options.fast_correlative_scan_matcher.min_score;
+  // A submap whose own scans would not pass min_score is too blurred (local SLAM failed while
+  // building it) to close loops against on a lower threshold.
+  if (!(own_fit >= min_score) || options.min_score_of_own_fit == 0.0) return min_score;
+  return std::min(min_score, options.min_score_of_own_fit * own_fit);
+}
+
 LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap2D> submap,
                                            const ConstraintBuilderOptions2D& options)
     : submap_(std::move(submap)),
@@ -99,17 +110,21 @@ LoopClosureMatcher2D::LoopClosureMatcher2D(std::shared_ptr<const mapping::Submap
       fast_matcher_(*submap_->grid(), options.fast_correlative_scan_matcher),
       ceres_matcher_(options.ceres_scan_matcher) {}
 
+double LoopClosureMatcher2D::ScoreAt(const common::Rigid2d& T_submap_node,
+                                     const sensor::PointCloud2d& cloud) const {
+  return fast_matcher_.ScoreAt(submap_->T_local_submap() * T_submap_node, cloud);
+}
+
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
     const common::Rigid2d& T_submap_node_estimate, const sensor::PointCloud2d& cloud,
-    double* score) const {
+    double min_score, double* score) const {
   *score = 0.0;
   if (cloud.empty()) return std::nullopt;
   // Submap grids live in the local SLAM frame; T_local_submap takes submap to grid coordinates.
   const common::Rigid2d T_grid_submap = submap_->T_local_submap();
   const common::Rigid2d initial = T_grid_submap * T_submap_node_estimate;
   common::Rigid2d T_grid_node;
-  if (!fast_matcher_.Match(initial, cloud, options_.fast_correlative_scan_matcher.min_score, score,
-                          &T_grid_node)) {
+  if (!fast_matcher_.Match(initial, cloud, min_score, score, &T_grid_node)) {
     return std::nullopt;
   }
   // Only matches that pass min_score are refined, a small fraction of the searches: they

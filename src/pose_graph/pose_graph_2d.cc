@@ -289,6 +289,7 @@ void PoseGraph2D::RunBestSearch() {
   PendingSearch2D search;
   std::shared_ptr<const LoopClosureMatcher2D> matcher;
   std::shared_ptr<const sensor::PointCloud2d> cloud;
+  double min_score = 0.0;
   std::vector<std::function<void()>> first_tasks;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -305,6 +306,7 @@ void PoseGraph2D::RunBestSearch() {
     }
     if (matcher) {
       cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
+      min_score = MinScoreForOwnFit(submaps_[search.submap].own_fit, options_.constraint_builder);
     }
     first_tasks.swap(pending_first_tasks_);
   }
@@ -312,7 +314,8 @@ void PoseGraph2D::RunBestSearch() {
   if (!matcher) return;
   const auto start = std::chrono::steady_clock::now();
   double score = 0.0;
-  std::optional<Constraint2D> constraint = matcher->Match(search.T_submap_node, *cloud, &score);
+  std::optional<Constraint2D> constraint =
+      matcher->Match(search.T_submap_node, *cloud, min_score, &score);
   std::lock_guard<std::mutex> lock(mutex_);
   searches_in_flight_.erase(id);
   stats_.loop_closure_search_s += SecondsSince(start);
@@ -335,6 +338,18 @@ void PoseGraph2D::RunBestSearch() {
   constraint->laser_score = score;
   if (!constraint->unmeasured_direction.isZero()) ++stats_.loop_closures_degenerate;
   AddLoopClosureLocked(*constraint);
+}
+
+double PoseGraph2D::OwnFitLocked(int s, const LoopClosureMatcher2D& matcher) {
+  std::vector<double> scores;
+  for (const Constraint2D& c : constraints_) {
+    if (c.submap != s || c.tag != Constraint2D::kIntraSubmap || NodeGoneLocked(c.node)) continue;
+    scores.push_back(matcher.ScoreAt(c.T_submap_node, NodeLocked(c.node).cloud));
+  }
+  if (scores.empty()) return 0.0;
+  const auto median = scores.begin() + scores.size() / 2;
+  std::nth_element(scores.begin(), median, scores.end());
+  return *median;
 }
 
 void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher) {
@@ -408,6 +423,7 @@ std::function<void()> PoseGraph2D::MakeMatcherTask(
       data.rebuilding = false;
       if (data.trimmed) return;
       InstallMatcherLocked(s, matcher);
+      if (data.own_fit == 0.0) data.own_fit = OwnFitLocked(s, *matcher);
       data.searchable = true;
       for (const auto& [id, search] : data.waiting) {
         if (searches_in_flight_.count(id) != 0) MakeSearchReadyLocked(id, search);

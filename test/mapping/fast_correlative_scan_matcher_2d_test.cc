@@ -373,6 +373,22 @@ TEST(FastCorrelativeScanMatcher2DTest, RejectsScanOfAnotherWorld) {
   EXPECT_FALSE(matcher.Match(truth, {}, 0.0, &score, &pose));
 }
 
+TEST(FastCorrelativeScanMatcher2DTest, ScoreAtIsTheScoreMatchGivesThePoseItFinds) {
+  const std::vector<Segment> world = MakeStructuredWorld(7);
+  const ProbabilityGrid grid = DrawWorld(world);
+  const FastCorrelativeScanMatcher2D matcher(grid, FastCorrelativeScanMatcherOptions2D{});
+  const common::Rigid2d truth(8.0, 9.0, 1.0);
+  const sensor::PointCloud2d cloud = CastScan(world, truth, 180, 12.0);
+  double score = 0.0;
+  common::Rigid2d pose;
+  ASSERT_TRUE(matcher.Match(common::Rigid2d(8.3, 8.8, 1.05), cloud, 0.0, &score, &pose));
+  // The same cells up to float rounding at cell borders.
+  EXPECT_NEAR(matcher.ScoreAt(pose, cloud), score, 0.01);
+  // Away from where the scan was taken it fits worse; with no points, not at all.
+  EXPECT_LT(matcher.ScoreAt(common::Rigid2d(9.0, 9.0, 1.3), cloud), score - 0.1);
+  EXPECT_EQ(matcher.ScoreAt(pose, {}), 0.0);
+}
+
 TEST(FastCorrelativeScanMatcher2DTest, OptionsValidation) {
   std::string error;
   FastCorrelativeScanMatcherOptions2D options;

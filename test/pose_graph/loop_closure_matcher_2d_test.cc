@@ -98,6 +98,38 @@ TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
                                          constraint->evidence_z, options));
 }
 
+TEST(LoopClosureMatcher2DTest, AMatchPassesTheThresholdItIsGivenAndScoreAtAgrees) {
+  const auto submap = BuildFinishedSubmap();
+  const LoopClosureMatcher2D matcher(submap, ConstraintBuilderOptions2D{});
+  const common::Rigid2d T_world_node(6.9, 1.75, 0.35);
+  const common::Rigid2d T_submap_node = submap->T_local_submap().inverse() * T_world_node;
+  const common::Rigid2d estimate(T_submap_node.translation() + Eigen::Vector2d(0.3, 0.0),
+                                 T_submap_node.angle_rad());
+  const sensor::PointCloud2d cloud = LoopClosureCloud(SimulateRangeData(Room(), T_world_node));
+  double score = 0.0;
+  ASSERT_TRUE(matcher.Match(estimate, cloud, 0.0, &score).has_value());
+  double other = 0.0;
+  EXPECT_FALSE(matcher.Match(estimate, cloud, score + 0.01, &other).has_value());
+  EXPECT_TRUE(matcher.Match(estimate, cloud, score - 0.01, &other).has_value());
+  // Scored where the scan was taken, without a search: about what the match scored (the search
+  // ranks candidates with its prior on the estimate), far better than at the estimate.
+  const double at_truth = matcher.ScoreAt(T_submap_node, cloud);
+  EXPECT_NEAR(at_truth, score, 0.1);
+  EXPECT_LT(matcher.ScoreAt(estimate, cloud), at_truth - 0.05);
+}
+
+TEST(MinScoreForOwnFitTest, LowersTheThresholdOnlyInSubmapsThatFitTheirOwnScansPoorly) {
+  ConstraintBuilderOptions2D options;
+  options.fast_correlative_scan_matcher.min_score = 0.55;
+  options.min_score_of_own_fit = 0.85;
+  EXPECT_DOUBLE_EQ(MinScoreForOwnFit(0.0, options), 0.55);  // not measured
+  EXPECT_DOUBLE_EQ(MinScoreForOwnFit(0.70, options), 0.55);  // an office: 0.595 is above
+  EXPECT_DOUBLE_EQ(MinScoreForOwnFit(0.56, options), 0.85 * 0.56);  // outdoors
+  EXPECT_DOUBLE_EQ(MinScoreForOwnFit(0.48, options), 0.55);  // blurred
+  options.min_score_of_own_fit = 0.0;
+  EXPECT_DOUBLE_EQ(MinScoreForOwnFit(0.56, options), 0.55);
+}
+
 TEST(LoopClosureMatcher2DTest, RejectsScanFromDifferentRoom) {
   const auto submap = BuildFinishedSubmap();
   const ConstraintBuilderOptions2D options;
@@ -241,6 +273,10 @@ TEST(ConstraintBuilderOptions2DTest, RejectsBadOptions) {
   options.max_unevidenced_correction_m = -0.1;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("max_unevidenced_correction_m"), std::string::npos) << error;
+  options.max_unevidenced_correction_m = 0.2;
+  options.min_score_of_own_fit = 1.5;
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("min_score_of_own_fit"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -59,6 +59,14 @@ struct ConstraintBuilderOptions2D {
   // at 1.1-1.5. 0 for min_correction_evidence_z takes every match.
   double max_unevidenced_correction_m = 0.2;
   double min_correction_evidence_z = 2.0;
+  // A match also passes in a submap where it reaches this fraction of the submap's own fit
+  // (the median score of the scans inserted into it, at the poses local SLAM gave them), when
+  // that is below fast_correlative_scan_matcher.min_score. What a right match scores follows
+  // how crisp the submap is: offices' own scans score 0.64-0.70, open halls' and outdoor ones
+  // 0.56-0.60, a scan revisiting them less, so one fixed threshold that refuses wrong matches
+  // in offices refuses nearly every right one outdoors. A submap whose own scans score below
+  // min_score (blurred: local SLAM failed there) keeps min_score. 0 keeps it everywhere.
+  double min_score_of_own_fit = 0.85;
   mapping::FastCorrelativeScanMatcherOptions2D fast_correlative_scan_matcher;
   mapping::CeresScanMatcherOptions2D ceres_scan_matcher;
 
@@ -72,7 +80,7 @@ struct ConstraintBuilderOptions2D {
 // Keys: sampling_ratio, max_constraint_distance_m, loop_closure_translation_weight,
 // loop_closure_rotation_weight, min_translation_information_ratio, max_correction_m,
 // max_correction_per_path_m, max_unevidenced_correction_m, min_correction_evidence_z,
-// fast_correlative_scan_matcher, ceres_scan_matcher.
+// min_score_of_own_fit, fast_correlative_scan_matcher, ceres_scan_matcher.
 ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader);
 
 // Whether local SLAM's drift over `path_m` of travel explains a loop closure that moves the node
@@ -89,6 +97,11 @@ bool EvidenceSupportsCorrection(const common::Rigid2d& T_submap_node_estimate,
                                 const common::Rigid2d& T_submap_node_match, double evidence_z,
                                 const ConstraintBuilderOptions2D& options);
 
+// The score a loop-closure match must exceed in a submap whose own fit is `own_fit` (0: not
+// measured): fast_correlative_scan_matcher.min_score, or min_score_of_own_fit x own_fit where
+// that is lower and the own fit itself reaches min_score.
+double MinScoreForOwnFit(double own_fit, const ConstraintBuilderOptions2D& options);
+
 // A finished submap prepared for loop closure: its precomputation grids are built once
 // (the expensive part) and then shared read-only by every search against it.
 class LoopClosureMatcher2D {
@@ -98,13 +111,21 @@ class LoopClosureMatcher2D {
 
   // Searches for `cloud` (tracking frame) in the submap around the estimate T_submap_node.
   // Returns a kInterSubmap constraint (with submap/node indices left for the caller) if the
-  // branch-and-bound score exceeds fast_correlative_scan_matcher.min_score; `score` receives
-  // the best score found. For a degenerate scan (min_translation_information_ratio) the
+  // branch-and-bound score exceeds `min_score`; `score` receives the best score found. For a degenerate scan (min_translation_information_ratio) the
   // constraint's unmeasured_direction is set and its translation along it is the estimate's:
   // the match's is no measurement, and the constraint holds nothing there. The constraint's
   // evidence_z compares its pose with the estimate.
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
-                                    const sensor::PointCloud2d& cloud, double* score) const;
+                                    const sensor::PointCloud2d& cloud, double min_score,
+                                    double* score) const;
+  // As above with fast_correlative_scan_matcher.min_score.
+  std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
+                                    const sensor::PointCloud2d& cloud, double* score) const {
+    return Match(T_submap_node_estimate, cloud, options_.fast_correlative_scan_matcher.min_score,
+                 score);
+  }
+  // The score a match of `cloud` at T_submap_node itself would have (no search).
+  double ScoreAt(const common::Rigid2d& T_submap_node, const sensor::PointCloud2d& cloud) const;
   // Memory held by the precomputation grids (the submap is counted by its owner).
   size_t bytes() const { return fast_matcher_.precomputation_grids().bytes(); }
 

@@ -281,6 +281,9 @@ class PoseGraph2D {
     // NodeData::path_m of the nodes that loop closures in the last solved graph tie to this
     // submap, ascending: shortcuts for PathBetweenLocked.
     std::vector<double> solved_closure_paths_m;
+    // The median score of its own nodes' scans at their intra-submap poses (0 until measured,
+    // when its first precomputation is installed): see MinScoreForOwnFit.
+    double own_fit = 0.0;
   };
 
   // Ready searches (ready_searches_), best first: the newest node first, then first come. Behind
@@ -310,6 +313,8 @@ class PoseGraph2D {
   void RunBestSearch();
   // Installs a just built matcher for submap `s`, then releases the least recently used
   // others while the grids held exceed the budget.
+  // SubmapData::own_fit of submap s, measured with its matcher (0 without nodes left).
+  double OwnFitLocked(int s, const LoopClosureMatcher2D& matcher);
   void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
   // Adds a found match: at once, or with verification on as a candidate that is accepted
   // (together with the candidates it confirms) once enough closures agree with it.

@@ -57,6 +57,10 @@ class FastCorrelativeScanMatcher2D {
   bool Match(const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud,
              double min_score, double* score, common::Rigid2d* pose) const;
 
+  // The score Match gives `cloud` (tracking frame) at `pose` (T_grid_tracking) itself, with
+  // no search: the mean quantised probability of the cells its points fall in (0 off the grid).
+  double ScoreAt(const common::Rigid2d& pose, const sensor::PointCloud2d& cloud) const;
+
   // Searches every translation over the grid and every angle in [-pi, pi].
   bool MatchFullSubmap(const sensor::PointCloud2d& cloud, double min_score, double* score,
                        common::Rigid2d* pose) const;
