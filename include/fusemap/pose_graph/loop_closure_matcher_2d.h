@@ -111,10 +111,11 @@ class LoopClosureMatcher2D {
 
   // Searches for `cloud` (tracking frame) in the submap around the estimate T_submap_node.
   // Returns a kInterSubmap constraint (with submap/node indices left for the caller) if the
-  // branch-and-bound score exceeds `min_score`; `score` receives the best score found. For a degenerate scan (min_translation_information_ratio) the
-  // constraint's unmeasured_direction is set and its translation along it is the estimate's:
-  // the match's is no measurement, and the constraint holds nothing there. The constraint's
-  // evidence_z compares its pose with the estimate.
+  // branch-and-bound score exceeds `min_score`; `score` receives the best score found. For a
+  // degenerate scan (min_translation_information_ratio) the constraint's unmeasured_direction
+  // is set and its translation along it is the estimate's: the match's is no measurement, and
+  // the constraint holds nothing there. The constraint's evidence_z compares its pose with the
+  // estimate.
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
                                     const sensor::PointCloud2d& cloud, double min_score,
                                     double* score) const;

@@ -313,9 +313,9 @@ class PoseGraph2D {
   void RunBestSearch();
   // Installs a just built matcher for submap `s`, then releases the least recently used
   // others while the grids held exceed the budget.
+  void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
   // SubmapData::own_fit of submap s, measured with its matcher (0 without nodes left).
   double OwnFitLocked(int s, const LoopClosureMatcher2D& matcher);
-  void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
   // Adds a found match: at once, or with verification on as a candidate that is accepted
   // (together with the candidates it confirms) once enough closures agree with it.
   void AddLoopClosureLocked(const Constraint2D& constraint);
