@@ -4,7 +4,9 @@
 #include <chrono>
 #include <iterator>
 #include <limits>
+#include <utility>
 
+#include "fusemap/common/math.h"
 #include "fusemap/pose_graph/sparse_pose_adjustment_2d.h"
 
 namespace fusemap {
@@ -346,10 +348,7 @@ double PoseGraph2D::OwnFitLocked(int s, const LoopClosureMatcher2D& matcher) {
     if (c.submap != s || c.tag != Constraint2D::kIntraSubmap || NodeGoneLocked(c.node)) continue;
     scores.push_back(matcher.ScoreAt(c.T_submap_node, NodeLocked(c.node).cloud));
   }
-  if (scores.empty()) return 0.0;
-  const auto median = scores.begin() + scores.size() / 2;
-  std::nth_element(scores.begin(), median, scores.end());
-  return *median;
+  return common::Percentile(std::move(scores), 0.5);  // 0 when empty
 }
 
 void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher) {
