@@ -75,7 +75,8 @@ TEST(LoopClosureMatcher2DTest, FindsTruePoseFromOffsetEstimate) {
                                  T_submap_node.angle_rad() + common::DegToRad(5.0));
   double score = 0.0;
   const auto constraint =
-      matcher.Match(estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)), &score);
+      matcher.Match(estimate, LoopClosureCloud(SimulateRangeData(Room(), T_world_node)),
+                    options.fast_correlative_scan_matcher.min_score, &score);
   ASSERT_TRUE(constraint.has_value()) << "score " << score;
   // The room holds the match every way.
   EXPECT_TRUE(constraint->unmeasured_direction.isZero());
@@ -139,7 +140,7 @@ TEST(LoopClosureMatcher2DTest, RejectsScanFromDifferentRoom) {
   double score = 1.0;
   const auto constraint = matcher.Match(
       estimate, LoopClosureCloud(SimulateRangeData(RoundRoom(), common::Rigid2d(0.4, -0.2, 0.1))),
-      &score);
+      options.fast_correlative_scan_matcher.min_score, &score);
   std::printf("different room: score %.3f\n", score);
   EXPECT_FALSE(constraint.has_value());
   EXPECT_LT(score, options.fast_correlative_scan_matcher.min_score);
@@ -173,14 +174,18 @@ TEST(LoopClosureMatcher2DTest, ACorridorMatchHoldsTheNodeAcrossTheCorridorOnly) 
   ConstraintBuilderOptions2D every_way;
   every_way.min_translation_information_ratio = 0.0;
   double score = 0.0;
-  const auto plain = LoopClosureMatcher2D(submap, every_way).Match(estimate, cloud, &score);
+  const auto plain = LoopClosureMatcher2D(submap, every_way)
+                         .Match(estimate, cloud, every_way.fast_correlative_scan_matcher.min_score,
+                                &score);
   ASSERT_TRUE(plain.has_value());
   EXPECT_GT(score, every_way.fast_correlative_scan_matcher.min_score);
   EXPECT_TRUE(plain->unmeasured_direction.isZero());
 
   const ConstraintBuilderOptions2D defaults;
   EXPECT_GT(defaults.min_translation_information_ratio, 0.0);
-  const auto held = LoopClosureMatcher2D(submap, defaults).Match(estimate, cloud, &score);
+  const auto held = LoopClosureMatcher2D(submap, defaults)
+                        .Match(estimate, cloud, defaults.fast_correlative_scan_matcher.min_score,
+                               &score);
   ASSERT_TRUE(held.has_value());
   // It measures nothing along the corridor (the node's frame is turned 0.05 rad from it)...
   EXPECT_NEAR(held->unmeasured_direction.norm(), 1.0, 1e-9);
@@ -198,9 +203,12 @@ TEST(LoopClosureMatcher2DTest, ACorridorMatchHoldsTheNodeAcrossTheCorridorOnly) 
 
 TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {
   const auto submap = BuildFinishedSubmap();
-  const LoopClosureMatcher2D matcher(submap, ConstraintBuilderOptions2D());
+  const ConstraintBuilderOptions2D options;
+  const LoopClosureMatcher2D matcher(submap, options);
   double score = 1.0;
-  EXPECT_FALSE(matcher.Match(common::Rigid2d(), {}, &score).has_value());
+  EXPECT_FALSE(
+      matcher.Match(common::Rigid2d(), {}, options.fast_correlative_scan_matcher.min_score, &score)
+          .has_value());
   EXPECT_EQ(score, 0.0);
 }
 

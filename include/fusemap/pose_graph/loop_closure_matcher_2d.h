@@ -119,12 +119,6 @@ class LoopClosureMatcher2D {
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
                                     const sensor::PointCloud2d& cloud, double min_score,
                                     double* score) const;
-  // As above with fast_correlative_scan_matcher.min_score.
-  std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
-                                    const sensor::PointCloud2d& cloud, double* score) const {
-    return Match(T_submap_node_estimate, cloud, options_.fast_correlative_scan_matcher.min_score,
-                 score);
-  }
   // The score a match of `cloud` at T_submap_node itself would have (no search).
   double ScoreAt(const common::Rigid2d& T_submap_node, const sensor::PointCloud2d& cloud) const;
   // Memory held by the precomputation grids (the submap is counted by its owner).
