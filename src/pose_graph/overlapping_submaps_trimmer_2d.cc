@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "fusemap/mapping/probability_values.h"
+
 namespace fusemap {
 namespace pose_graph {
 namespace {
@@ -31,6 +33,10 @@ void OverlappingSubmapsTrimmerOptions2D::Check(common::OptionChecker* check) con
   check->Require(fresh_submaps_count >= 0 && fresh_submaps_count <= kMaxFreshSubmaps,
                  "fresh_submaps_count",
                  "must be in [0, " + std::to_string(kMaxFreshSubmaps) + "]");
+  check->Require(min_probability_margin >= 0.0 &&
+                     min_probability_margin < 0.5 - mapping::kMinProbability,
+                 "min_probability_margin",
+                 "must be in [0, 0.4): no cell's probability is further from 0.5");
   check->Require(min_covered_area_m2 >= 0.0 && std::isfinite(min_covered_area_m2),
                  "min_covered_area_m2", "must be >= 0");
   check->Require(min_added_submaps_count >= 1, "min_added_submaps_count", "must be >= 1");
@@ -44,6 +50,7 @@ OverlappingSubmapsTrimmerOptions2D ParseOverlappingSubmapsTrimmerOptions2D(
     common::ConfigReader& reader) {
   OverlappingSubmapsTrimmerOptions2D options;
   reader.Get("fresh_submaps_count", &options.fresh_submaps_count);
+  reader.Get("min_probability_margin", &options.min_probability_margin);
   reader.Get("min_covered_area_m2", &options.min_covered_area_m2);
   reader.Get("min_added_submaps_count", &options.min_added_submaps_count);
   reader.CheckOptions(options);
@@ -69,7 +76,10 @@ std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
     for (int y = min_cell.y(); y <= max_cell.y(); ++y) {
       for (int x = min_cell.x(); x <= max_cell.x(); ++x) {
         const Eigen::Array2i cell(x, y);
-        if (!grid.IsKnown(cell)) continue;
+        if (!grid.IsKnown(cell) ||
+            std::abs(grid.GetProbability(cell) - 0.5f) < options.min_probability_margin) {
+          continue;
+        }
         const Eigen::Vector2d point_m = submaps[i].T_map_grid * limits.GetCellCenter(cell);
         FreshSubmaps& fresh = cells[CellKey(point_m, resolution_m)];
         // A rotated grid can put two of its cells into one map cell; count the submap once.

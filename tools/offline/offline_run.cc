@@ -96,6 +96,7 @@ int Run(const Args& args) {
   std::vector<double> rss_mb;  // every kRssSampleScans scans
   // Global SLAM's grids and clouds at the same moments: what of the RSS the graph holds.
   std::vector<double> graph_mb, matcher_mb;
+  std::vector<double> submaps_held;  // finished submaps held: what the trimmer bounds
   int scans = 0, rgbd_frames = 0, bad_messages = 0, other_messages = 0, odometry_out_of_order = 0;
   double first_stamp_s = 0.0, last_stamp_s = 0.0;
   bool have_stamp = false;
@@ -142,6 +143,7 @@ int Run(const Args& args) {
         matcher_mb.push_back(graph.matcher_bytes / 1048576.0);
         graph_mb.push_back((graph.submap_bytes + graph.matcher_bytes + graph.node_bytes) /
                            1048576.0);
+        submaps_held.push_back(graph.finished_submaps_held);
       }
     } else if (const auto* odometry = std::get_if<sensor::OdometryData>(&message)) {
       session.AddOdometry(*odometry);
@@ -307,15 +309,16 @@ int Run(const Args& args) {
   std::printf("per_scan_ms: median=%.2f p99=%.2f mean=%.2f peak_rss_mb=%.1f\n",
               Percentile(scan_cost_ms, 0.5), Percentile(scan_cost_ms, 0.99),
               1e3 * wall_s / scans, usage.ru_maxrss / 1024.0);
-  const auto samples = [](const std::vector<double>& mb) {
+  const auto samples = [](const std::vector<double>& values) {
     std::string line;
-    for (double value : mb) line += " " + std::to_string(static_cast<int>(value + 0.5));
+    for (double value : values) line += " " + std::to_string(static_cast<int>(value + 0.5));
     return line.empty() ? std::string(" none") : line;
   };
   std::printf("rss_mb_over_time: every_scans=%d end_of_slam=%.0f samples=%s\n", kRssSampleScans,
               end_of_slam_rss_mb, samples(rss_mb).c_str());
-  std::printf("graph_mb_over_time: every_scans=%d samples=%s matcher_samples=%s\n",
-              kRssSampleScans, samples(graph_mb).c_str(), samples(matcher_mb).c_str());
+  std::printf("graph_mb_over_time: every_scans=%d samples=%s matcher_samples=%s submaps_held=%s\n",
+              kRssSampleScans, samples(graph_mb).c_str(), samples(matcher_mb).c_str(),
+              samples(submaps_held).c_str());
   // Whether the cost of a scan grows with the map: the first and the last 1,000 scans (the
   // same scans twice on a shorter log).
   const size_t window = std::min<size_t>(1000, scan_cost_ms.size());
