@@ -54,10 +54,10 @@ struct PlacedSubmap2D {
   std::function<std::shared_ptr<const mapping::ProbabilityGrid>()> grid;
 };
 
-// The submaps to drop, in increasing index order. Cells every grid knows (beyond
-// min_probability_margin) are binned into
-// map cells of the first grid's resolution; each map cell keeps its fresh_submaps_count newest
-// submaps, and a submap kept on less than min_covered_area_m2 is returned. `submaps` must be
+// The submaps to drop, in increasing index order. The cells each grid knows (beyond
+// min_probability_margin) are binned into map cells of the newest grid's resolution; each map
+// cell keeps its fresh_submaps_count newest submaps, and a submap kept on less than
+// min_covered_area_m2 is returned. `submaps` must be
 // sorted by increasing index and `options` enabled and valid (asserted).
 std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
                                    const OverlappingSubmapsTrimmerOptions2D& options);
