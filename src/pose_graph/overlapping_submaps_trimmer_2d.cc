@@ -22,7 +22,7 @@ std::int64_t FloorToCell(double coordinate_m, double resolution_m) {
 // Per map cell, how many of the submaps counted so far know it (up to fresh_submaps_count). A
 // byte per cell, in tiles of 64 x 64 cells made only where some submap knows a cell: a campus
 // holds tens of millions of cells in its bounding box, and a hash map entry per known cell took
-// freiburg-campus' run with the trimmer to 1.1 GB.
+// freiburg-campus' run with the trimmer to 595 MB of RSS (334 MB with the tiles).
 class KnowerCounts {
  public:
   static constexpr int kTileBits = 6;
@@ -120,8 +120,7 @@ std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
         }
       }
     }
-    // A rotated grid can put two of its cells into one map cell; count the
-    // submap once.
+    // A rotated grid can put two of its cells into one map cell; count the submap once.
     std::sort(known.begin(), known.end());
     known.erase(std::unique(known.begin(), known.end()), known.end());
     long kept_cells = 0;
