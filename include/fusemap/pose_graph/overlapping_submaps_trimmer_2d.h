@@ -57,8 +57,8 @@ struct PlacedSubmap2D {
 // The submaps to drop, in increasing index order. The cells each grid knows (beyond
 // min_probability_margin) are binned into map cells of the newest grid's resolution; each map
 // cell keeps its fresh_submaps_count newest submaps, and a submap kept on less than
-// min_covered_area_m2 is returned. `submaps` must be
-// sorted by increasing index and `options` enabled and valid (asserted).
+// min_covered_area_m2 is returned. `submaps` must be sorted by increasing index and `options`
+// enabled and valid (asserted).
 std::vector<int> FindSubmapsToTrim(const std::vector<PlacedSubmap2D>& submaps,
                                    const OverlappingSubmapsTrimmerOptions2D& options);
 
