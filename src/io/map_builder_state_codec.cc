@@ -177,6 +177,15 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
   PutLocal(state.local_slam, out);
   out->U64(state.active_submaps.size());
   for (int s : state.active_submaps) out->I32(s);
+  // Format 8: node links (the camera's motion between keyframes).
+  out->U64(g.node_links.size());
+  for (const auto& link : g.node_links) {
+    out->I32(link.from);
+    out->I32(link.to);
+    EncodeRigid2d(link.T_from_to, out);
+    out->F64(link.translation_weight);
+    out->F64(link.rotation_weight);
+  }
 }
 
 namespace {
@@ -382,6 +391,21 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
   state->active_submaps.resize(n);
   for (int& s : state->active_submaps) {
     if (!in->I32(&s)) return false;
+  }
+  if (!in->Count(48, &n)) return false;
+  g.node_links.resize(n);
+  for (auto& link : g.node_links) {
+    if (!in->I32(&link.from) || !in->I32(&link.to) || !DecodeRigid2d(in, &link.T_from_to) ||
+        !in->F64(&link.translation_weight) || !in->F64(&link.rotation_weight)) {
+      return false;
+    }
+    if (!(link.from < link.to) || !(link.translation_weight > 0.0) ||
+        !(link.rotation_weight > 0.0) || !std::isfinite(link.translation_weight) ||
+        !std::isfinite(link.rotation_weight)) {
+      in->Fail("node link " + std::to_string(link.from) + " -> " + std::to_string(link.to) +
+               " is not forward with positive, finite weights");
+      return false;
+    }
   }
   return CheckInvariants(*state, in);
 }

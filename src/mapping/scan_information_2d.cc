@@ -107,5 +107,11 @@ ScanInformation2D ComputeMatchedScanInformation2D(const ProbabilityGrid& grid,
   return ComputeInformation(cloud, &confirmed);
 }
 
+Eigen::Vector2d UnpinnedDirection2D(const sensor::PointCloud2d& cloud, double min_ratio) {
+  const ScanInformation2D information = ComputeScanInformation2D(cloud);
+  if (information.TranslationRatio() >= min_ratio) return Eigen::Vector2d::Zero();
+  return information.weakest_direction;
+}
+
 }  // namespace mapping
 }  // namespace fusemap

@@ -34,6 +34,8 @@ void PoseGraphOptions2D::Check(common::OptionChecker* check) const {
   check->Require(local_slam_translation_weight >= 0, "local_slam_translation_weight",
                  "must be >= 0");
   check->Require(local_slam_rotation_weight >= 0, "local_slam_rotation_weight", "must be >= 0");
+  check->Require(linked_unmeasured_weight_fraction > 0 && linked_unmeasured_weight_fraction <= 1,
+                 "linked_unmeasured_weight_fraction", "must be in (0, 1]");
   check->Require(matcher_memory_budget_mb > 0, "matcher_memory_budget_mb", "must be > 0");
   check->Require(max_pending_searches >= 1, "max_pending_searches", "must be >= 1");
   check->Nested("constraint_builder", constraint_builder);
@@ -57,6 +59,7 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
   reader.Get("matcher_rotation_weight", &options.matcher_rotation_weight);
   reader.Get("local_slam_translation_weight", &options.local_slam_translation_weight);
   reader.Get("local_slam_rotation_weight", &options.local_slam_rotation_weight);
+  reader.Get("linked_unmeasured_weight_fraction", &options.linked_unmeasured_weight_fraction);
   reader.Get("final_optimization_iterations", &options.final_optimization_iterations);
   reader.Get("matcher_memory_budget_mb", &options.matcher_memory_budget_mb);
   reader.Get("max_pending_searches", &options.max_pending_searches);
@@ -480,6 +483,23 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
       c.T_from_to = nodes_[i].T_local_node.inverse() * nodes_[i + 1].T_local_node;
       c.translation_weight = options_.local_slam_translation_weight;
       c.rotation_weight = options_.local_slam_rotation_weight;
+      if (nodes_[i + 1].motion_linked) {
+        c.weak_direction = nodes_[i + 1].unmeasured_direction;
+        c.weak_weight_fraction = options_.linked_unmeasured_weight_fraction;
+      }
+      problem.AddNodeToNodeConstraint(c);
+    }
+    for (const NodeLink2D& link : node_links_) {
+      const int from = SlotLocked(link.from);
+      const int to = SlotLocked(link.to);
+      if (from < 0 || to < 0 || node_slot[from] < 0 || node_slot[to] < 0) continue;
+      NodeToNodeConstraint2D c;
+      c.from = node_slot[from];
+      c.to = node_slot[to];
+      c.T_from_to = link.T_from_to;
+      c.translation_weight = link.translation_weight;
+      c.rotation_weight = link.rotation_weight;
+      c.robust = true;  // the camera may have matched the wrong thing
       problem.AddNodeToNodeConstraint(c);
     }
     if (!nodes_.empty()) T_local_last_node = nodes_.back().T_local_node;
@@ -711,6 +731,11 @@ void PoseGraph2D::RemoveTrimmedNodes(const std::vector<int>& nodes) {
   }
   nodes_.resize(kept);
   T_map_nodes_.resize(kept);
+  node_links_.erase(std::remove_if(node_links_.begin(), node_links_.end(),
+                                   [this](const NodeLink2D& link) {
+                                     return SlotLocked(link.from) < 0 || SlotLocked(link.to) < 0;
+                                   }),
+                    node_links_.end());
 }
 
 common::Rigid2d PoseGraph2D::T_map_local() const {
@@ -729,6 +754,11 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   std::lock_guard<std::mutex> lock(mutex_);
   Stats stats = stats_;
   stats.constraints = static_cast<int>(constraints_.size());
+  stats.node_links = static_cast<int>(node_links_.size());
+  stats.linked_unmeasured_steps =
+      static_cast<int>(std::count_if(nodes_.begin(), nodes_.end(), [](const NodeData& node) {
+        return node.motion_linked && !node.unmeasured_direction.isZero();
+      }));
   stats.loop_closure_candidates = static_cast<int>(
       std::count_if(constraints_.begin(), constraints_.end(), [](const Constraint2D& c) {
         return c.tag == Constraint2D::kLoopClosureCandidate;

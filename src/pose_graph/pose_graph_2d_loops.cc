@@ -1,7 +1,9 @@
-// PoseGraph2D's loop-constraint API: laser loop closures handed out for a second opinion, and
-// loop constraints added, replaced or removed from outside (session::VisualStage).
+// PoseGraph2D's loop-constraint API: laser loop closures handed out for a second opinion, loop
+// constraints added, replaced or removed from outside, and node links (session::VisualStage).
 #include <algorithm>
+#include <utility>
 
+#include "fusemap/mapping/scan_matching/scan_information_2d.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 
 namespace fusemap {
@@ -98,6 +100,41 @@ std::vector<Constraint2D> PoseGraph2D::LoopConstraints() const {
     if (c.tag != Constraint2D::kIntraSubmap) loops.push_back(c);
   }
   return loops;
+}
+
+bool PoseGraph2D::AddNodeLink(const NodeLink2D& link) {
+  // The scans of the steps the link covers are judged outside the lock (a fraction of a
+  // millisecond each, on the caller's thread): local SLAM adds nodes meanwhile.
+  std::vector<std::pair<int, sensor::PointCloud2d>> clouds;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!(link.from < link.to) || NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) {
+      return false;
+    }
+    for (int slot = SlotLocked(link.from) + 1; slot <= SlotLocked(link.to); ++slot) {
+      if (!nodes_[slot].motion_linked) clouds.emplace_back(nodes_[slot].index, nodes_[slot].cloud);
+    }
+  }
+  const double min_ratio = options_.constraint_builder.min_translation_information_ratio;
+  std::vector<std::pair<int, Eigen::Vector2d>> directions;
+  for (const auto& [node, cloud] : clouds) {
+    directions.emplace_back(node, mapping::UnpinnedDirection2D(cloud, min_ratio));
+  }
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) return false;
+  for (const auto& [node, direction] : directions) {
+    if (NodeGoneLocked(node)) continue;
+    NodeData& data = NodeLocked(node);
+    data.motion_linked = true;
+    data.unmeasured_direction = direction;
+  }
+  node_links_.push_back(link);
+  return true;
+}
+
+std::vector<NodeLink2D> PoseGraph2D::NodeLinks() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return node_links_;
 }
 
 std::optional<double> PoseGraph2D::PathBetween(int node, int submap) const {

@@ -2,6 +2,7 @@
 #include <cassert>
 #include <map>
 
+#include "fusemap/mapping/scan_matching/scan_information_2d.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 
 namespace fusemap {
@@ -27,6 +28,7 @@ PoseGraphState2D PoseGraph2D::ExportState(
   state.T_map_nodes = T_map_nodes_;
   state.T_map_submaps = T_map_submaps_;
   state.constraints = constraints_;
+  state.node_links = node_links_;
   for (const auto& [id, search] : searches_in_flight_) state.searches_in_flight.push_back(search);
   state.optimization_pending = optimization_running_;
   state.nodes_since_optimization = nodes_since_optimization_;
@@ -70,6 +72,20 @@ void PoseGraph2D::RestoreState(
     T_map_nodes_ = state.T_map_nodes;
     T_map_submaps_ = state.T_map_submaps;
     constraints_ = state.constraints;
+    // Which local SLAM steps the links cover, and how their scans pinned them, is recomputed.
+    for (const NodeLink2D& link : state.node_links) {
+      const int from = SlotLocked(link.from);
+      const int to = SlotLocked(link.to);
+      if (from < 0 || to < 0) continue;
+      node_links_.push_back(link);
+      for (int slot = from + 1; slot <= to; ++slot) {
+        NodeData& node = nodes_[slot];
+        if (node.motion_linked || node.trimmed) continue;
+        node.motion_linked = true;
+        node.unmeasured_direction = mapping::UnpinnedDirection2D(
+            node.cloud, options_.constraint_builder.min_translation_information_ratio);
+      }
+    }
     // The shortcuts of the drift bound, taken from every accepted loop closure as if all had
     // been solved (the checkpoint does not say which were): at most one optimisation early.
     std::vector<std::pair<int, int>> loops;

@@ -93,13 +93,19 @@ Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotatio
 
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& unmeasured_direction) {
+  // 1e-6 of the information is 1e-3 of the weight.
+  return InformationFromWeights(translation_weight, rotation_weight, unmeasured_direction, 1e-3);
+}
+
+Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& weak_direction,
+                                       double weight_fraction) {
   Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
-  if (unmeasured_direction.isZero()) return information;
-  constexpr double kKeptFraction = 1e-6;
-  const Eigen::Vector2d d = unmeasured_direction.normalized();
+  if (weak_direction.isZero()) return information;
+  const Eigen::Vector2d d = weak_direction.normalized();
   information.topLeftCorner<2, 2>() =
       translation_weight * translation_weight *
-      (Eigen::Matrix2d::Identity() - (1.0 - kKeptFraction) * d * d.transpose());
+      (Eigen::Matrix2d::Identity() - (1.0 - weight_fraction * weight_fraction) * d * d.transpose());
   return information;
 }
 

@@ -30,6 +30,7 @@ void SparsePoseAdjustment2D::AddNodeToNodeConstraint(const NodeToNodeConstraint2
   assert(constraint.from >= 0 && constraint.from < static_cast<int>(T_map_nodes_.size()));
   assert(constraint.to >= 0 && constraint.to < static_cast<int>(T_map_nodes_.size()));
   assert(constraint.translation_weight > 0.0 && constraint.rotation_weight > 0.0);
+  assert(constraint.weak_weight_fraction > 0.0 && constraint.weak_weight_fraction <= 1.0);
   node_to_node_constraints_.push_back(constraint);
 }
 
@@ -62,8 +63,9 @@ OptimizationSummary SparsePoseAdjustment2D::Solve(const OptimizationOptions& opt
   }
   for (const NodeToNodeConstraint2D& c : node_to_node_constraints_) {
     graph.edges.push_back({num_submaps + c.from, num_submaps + c.to, c.T_from_to,
-                           InformationFromWeights(c.translation_weight, c.rotation_weight),
-                           false});
+                           InformationFromWeights(c.translation_weight, c.rotation_weight,
+                                                  c.weak_direction, c.weak_weight_fraction),
+                           c.robust});
   }
   // Without submaps there is nothing to anchor the gauge the way Cartographer does.
   assert(num_submaps > 0 || graph.edges.empty());

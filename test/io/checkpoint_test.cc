@@ -240,6 +240,45 @@ TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
   EXPECT_NE(error.find("unmeasured direction"), std::string::npos) << error;
 }
 
+// Node links (the camera's motion between keyframes) round-trip; a backward one is an error.
+TEST(CheckpointTest, NodeLinksRoundTripAndBackwardOnesAreRejected) {
+  CheckpointContents contents = Contents();
+  pose_graph::NodeLink2D link;
+  link.from = 1;
+  link.to = 4;
+  link.T_from_to = common::Rigid2d(0.7421875, -0.015625, 0.03125);
+  link.translation_weight = 123456.5;
+  link.rotation_weight = 9876.25;
+  contents.state.pose_graph.node_links.push_back(link);
+  const std::string bytes = EncodeCheckpoint(contents, false);
+  CheckpointContents read;
+  std::string error;
+  ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
+  ASSERT_EQ(read.state.pose_graph.node_links.size(), 1u);
+  const pose_graph::NodeLink2D& back = read.state.pose_graph.node_links[0];
+  EXPECT_EQ(back.from, 1);
+  EXPECT_EQ(back.to, 4);
+  EXPECT_EQ(back.T_from_to.translation(), link.T_from_to.translation());
+  EXPECT_EQ(back.T_from_to.angle_rad(), link.T_from_to.angle_rad());
+  EXPECT_EQ(back.translation_weight, 123456.5);
+  EXPECT_EQ(back.rotation_weight, 9876.25);
+
+  // The same link with `to` before `from`.
+  std::string payload = bytes.substr(36);
+  std::string pair;
+  ByteWriter pair_writer(&pair);
+  pair_writer.I32(1);
+  pair_writer.I32(4);
+  pair_writer.F64(0.7421875);
+  const size_t at = payload.rfind(pair);
+  ASSERT_NE(at, std::string::npos);
+  std::string backward;
+  ByteWriter(&backward).I32(0);
+  payload.replace(at + 4, 4, backward);
+  EXPECT_FALSE(DecodeCheckpoint(Reseal(bytes, payload), "ckpt", &read, &error));
+  EXPECT_NE(error.find("node link"), std::string::npos) << error;
+}
+
 // The path travelled at each node and each submap's range of it (the loop-closure drift bound)
 // round-trip; a path that shrinks from node to node, or a submap range that ends before it
 // starts, is an error.

@@ -158,6 +158,7 @@ TEST(SlamConfigTest, DefaultProfileEqualsTheBuiltInDefaults) {
     EXPECT_SAME(matcher_rotation_weight);
     EXPECT_SAME(local_slam_translation_weight);
     EXPECT_SAME(local_slam_rotation_weight);
+    EXPECT_SAME(linked_unmeasured_weight_fraction);
     EXPECT_SAME(final_optimization_iterations);
     EXPECT_SAME(matcher_memory_budget_mb);
     EXPECT_SAME(max_pending_searches);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "fusemap/common/math.h"
+#include "fusemap/mapping/submap_2d.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 #include "fusemap/sensor/range_data_builder.h"
 #include "fusemap/sensor/voxel_filter.h"
@@ -192,6 +193,158 @@ TEST(PoseGraph2DLoopsTest, RefusesUnknownNodesSubmapsAndTheNodesOwnSubmap) {
   EXPECT_FALSE(run.graph().T_submap_node(99, 3));
   EXPECT_FALSE(run.graph().T_submap_node(0, 99));
   EXPECT_TRUE(run.graph().T_submap_node(0, 3));
+}
+
+// Local SLAM along a corridor of two plain walls longer than the laser's range, with the
+// odometry's scale error (every step 3 % too long) that such scans cannot correct.
+class StretchedCorridorRun {
+ public:
+  static constexpr double kStepM = 0.1;
+  static constexpr double kStretch = 1.03;
+
+  StretchedCorridorRun(double linked_unmeasured_weight_fraction,
+                       std::vector<test_world::Segment> walls = Corridor())
+      : graph_(Options(linked_unmeasured_weight_fraction), &executor_), walls_(std::move(walls)) {
+    mapping::SubmapsOptions submap_options;
+    submap_options.num_range_data = 20;
+    active_ = std::make_unique<mapping::ActiveSubmaps2D>(submap_options);
+    filter_.max_length_m = 0.9f;
+    filter_.min_num_points = 100;
+  }
+
+  static std::vector<test_world::Segment> Corridor() {
+    return {{{-100.0, -1.0}, {100.0, -1.0}}, {{-100.0, 1.0}, {100.0, 1.0}}};
+  }
+  static common::Rigid2d TruePose(int i) { return common::Rigid2d(kStepM * i, 0.0, 0.0); }
+
+  void Drive(int num_nodes) {
+    for (int i = 0; i < num_nodes; ++i) {
+      const common::Rigid2d T_local_node(kStretch * kStepM * i, 0.0, 0.0);
+      const sensor::RangeData data = test_world::SimulateRangeData(walls_, TruePose(i));
+      const auto submaps = active_->InsertRangeData(sensor::TransformRangeData(data, T_local_node));
+      graph_.AddNode(0.1 * i, T_local_node, sensor::AdaptiveVoxelFilter(data.returns, filter_),
+                     submaps);
+    }
+  }
+  // The camera's motion between every `every`-th node, exact.
+  int AddTrueLinks(int num_nodes, int every) {
+    int added = 0;
+    for (int from = 0; from + every < num_nodes; from += every) {
+      NodeLink2D link;
+      link.from = from;
+      link.to = from + every;
+      link.T_from_to = TruePose(from).inverse() * TruePose(from + every);
+      link.translation_weight = 2e5;
+      link.rotation_weight = 1e4;
+      added += graph_.AddNodeLink(link);
+    }
+    return added;
+  }
+  double FirstToLastM() {
+    const auto snapshot = graph_.Snapshot();
+    return (snapshot->T_map_nodes.back().translation() -
+            snapshot->T_map_nodes.front().translation())
+        .norm();
+  }
+  PoseGraph2D& graph() { return graph_; }
+
+ private:
+  static PoseGraphOptions2D Options(double linked_unmeasured_weight_fraction) {
+    PoseGraphOptions2D options = TestOptions(/*laser_loops=*/false);
+    options.linked_unmeasured_weight_fraction = linked_unmeasured_weight_fraction;
+    return options;
+  }
+
+  common::InlineExecutor executor_;
+  PoseGraph2D graph_;
+  const std::vector<test_world::Segment> walls_;
+  std::unique_ptr<mapping::ActiveSubmaps2D> active_;
+  sensor::AdaptiveVoxelFilterOptions filter_;
+};
+
+TEST(PoseGraph2DLoopsTest, NodeLinksSetACorridorsLengthWhereItsScansCannot) {
+  constexpr int kNodes = 201;  // 20 m
+  const double true_m = StretchedCorridorRun::kStepM * (kNodes - 1);
+
+  StretchedCorridorRun without_links(1e-2);
+  without_links.Drive(kNodes);
+  without_links.graph().RunFinalOptimization();
+  EXPECT_NEAR(without_links.FirstToLastM(), StretchedCorridorRun::kStretch * true_m, 0.02);
+
+  StretchedCorridorRun linked(1e-2);
+  linked.Drive(kNodes);
+  EXPECT_EQ(linked.AddTrueLinks(kNodes, 8), (kNodes - 1) / 8);
+  linked.graph().RunFinalOptimization();
+  const PoseGraph2D::Stats stats = linked.graph().stats();
+  EXPECT_EQ(stats.node_links, (kNodes - 1) / 8);
+  // Every linked step's scan sees two parallel walls only.
+  EXPECT_EQ(stats.linked_unmeasured_steps, 8 * ((kNodes - 1) / 8));
+  std::printf("first to last node: true %.3f m, without links %.3f m, with %.3f m\n", true_m,
+              without_links.FirstToLastM(), linked.FirstToLastM());
+  // 60 cm of stretch, down to a centimetre.
+  EXPECT_NEAR(linked.FirstToLastM(), true_m, 0.01);
+
+  // Where local SLAM's steps keep their full weight, the links hardly move them: the weakening
+  // is what lets the camera decide.
+  StretchedCorridorRun full_weight(1.0);
+  full_weight.Drive(kNodes);
+  full_weight.AddTrueLinks(kNodes, 8);
+  full_weight.graph().RunFinalOptimization();
+  std::printf("with the steps at full weight %.3f m\n", full_weight.FirstToLastM());
+  EXPECT_GT(full_weight.FirstToLastM() - true_m,
+            0.5 * (StretchedCorridorRun::kStretch - 1.0) * true_m);
+}
+
+TEST(PoseGraph2DLoopsTest, NodeLinksLeaveStepsWhoseScansPinThemAlone) {
+  // A closed room: every scan sees walls across both directions.
+  std::vector<test_world::Segment> room;
+  test_world::AddBox(-1.0, -1.5, 6.0, 1.5, &room);
+  StretchedCorridorRun run(1e-2, room);
+  run.Drive(41);
+  EXPECT_EQ(run.AddTrueLinks(41, 8), 5);
+  EXPECT_EQ(run.graph().stats().node_links, 5);
+  EXPECT_EQ(run.graph().stats().linked_unmeasured_steps, 0);
+}
+
+TEST(PoseGraph2DLoopsTest, NodeLinksSurviveExportAndRestore) {
+  constexpr int kNodes = 81;
+  StretchedCorridorRun run(1e-2);
+  run.Drive(kNodes);
+  run.AddTrueLinks(kNodes, 8);
+  std::vector<std::shared_ptr<const mapping::Submap2D>> submaps;
+  const PoseGraphState2D state = run.graph().ExportState(&submaps);
+  EXPECT_EQ(state.node_links.size(), 10u);
+
+  common::InlineExecutor executor;
+  PoseGraph2D restored(TestOptions(/*laser_loops=*/false), &executor);
+  restored.RestoreState(state, submaps);
+  EXPECT_EQ(restored.stats().node_links, 10);
+  // Which steps the links cover, and that their scans pin nothing along, is worked out again.
+  EXPECT_EQ(restored.stats().linked_unmeasured_steps, 80);
+  restored.RunFinalOptimization();
+  run.graph().RunFinalOptimization();
+  const auto a = run.graph().Snapshot();
+  const auto b = restored.Snapshot();
+  EXPECT_NEAR((b->T_map_nodes.back().translation() - b->T_map_nodes.front().translation()).norm(),
+              (a->T_map_nodes.back().translation() - a->T_map_nodes.front().translation()).norm(),
+              1e-6);
+}
+
+TEST(PoseGraph2DLoopsTest, RefusesNodeLinksBackwardsOrToUnknownNodes) {
+  StretchedCorridorRun run(1e-2);
+  run.Drive(10);
+  NodeLink2D link;
+  link.from = 5;
+  link.to = 5;
+  EXPECT_FALSE(run.graph().AddNodeLink(link));
+  link.from = 6;
+  EXPECT_FALSE(run.graph().AddNodeLink(link));
+  link.from = 2;
+  link.to = 10;  // not added yet
+  EXPECT_FALSE(run.graph().AddNodeLink(link));
+  link.to = 9;
+  EXPECT_TRUE(run.graph().AddNodeLink(link));
+  EXPECT_EQ(run.graph().stats().node_links, 1);
 }
 
 }  // namespace

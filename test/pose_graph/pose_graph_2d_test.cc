@@ -367,6 +367,15 @@ TEST(PoseGraph2DTest, OptionsValidation) {
   options.matcher_rotation_weight = 1.0;
   options.loop_closure_verification.max_node_gap = 0;
   EXPECT_FALSE(options.IsValid(&error));
+  options.loop_closure_verification.max_node_gap =
+      PoseGraphOptions2D().loop_closure_verification.max_node_gap;
+  for (double fraction : {0.0, 1.5}) {
+    options.linked_unmeasured_weight_fraction = fraction;
+    EXPECT_FALSE(options.IsValid(&error));
+    EXPECT_NE(error.find("linked_unmeasured_weight_fraction"), std::string::npos) << error;
+  }
+  options.linked_unmeasured_weight_fraction = 1.0;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
 }
 
 }  // namespace

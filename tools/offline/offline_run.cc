@@ -288,12 +288,14 @@ int Run(const Args& args) {
       "global_slam: nodes=%d submaps=%d loop_closure_searches=%d loop_closures_accepted=%d "
       "optimizations=%d search_s=%.3f precomputation_s=%.3f optimization_s=%.3f trimming_s=%.3f "
       "trimmed_submaps=%d trimmed_nodes=%d loop_closures_unverified=%d "
-      "loop_closures_degenerate=%d loop_closures_beyond_drift=%d loop_closures_ambiguous=%d\n",
+      "loop_closures_degenerate=%d loop_closures_beyond_drift=%d loop_closures_ambiguous=%d "
+      "node_links=%d linked_unmeasured_steps=%d\n",
       global.nodes, global.submaps, global.loop_closure_searches, global.loop_closures_found,
       global.optimizations, global.loop_closure_search_s, global.precomputation_s,
       global.optimization_s, global.trimming_s, global.trimmed_submaps, global.trimmed_nodes,
       global.loop_closure_candidates, global.loop_closures_degenerate,
-      global.loop_closures_beyond_drift, global.loop_closures_ambiguous);
+      global.loop_closures_beyond_drift, global.loop_closures_ambiguous, global.node_links,
+      global.linked_unmeasured_steps);
   const auto per = [](size_t bytes, int count) {
     return count > 0 ? static_cast<double>(bytes) / count / 1024.0 : 0.0;
   };

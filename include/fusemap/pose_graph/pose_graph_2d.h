@@ -33,6 +33,12 @@ struct PoseGraphOptions2D {
   // Weights of the relative motion between consecutive nodes as local SLAM estimated it.
   double local_slam_translation_weight = 1e5;
   double local_slam_rotation_weight = 1e5;
+  // Where a node link (AddNodeLink: the camera's motion between keyframes) measured the motion
+  // across a step whose scan pinned only one direction (a corridor of plain walls, by
+  // constraint_builder.min_translation_information_ratio), local SLAM's step along the other
+  // direction is the odometry's guess, scale error and all: its translation weight there is
+  // this fraction of local_slam_translation_weight, so that the link decides it. 1: unchanged.
+  double linked_unmeasured_weight_fraction = 1e-2;
   int final_optimization_iterations = 200;
   // Memory for loop-closure precomputation grids (LoopClosureMatcher2D) held at once. Beyond
   // it, the grids of the submaps least recently searched are released and rebuilt when a
@@ -92,6 +98,17 @@ struct ExternalLoopConstraint2D {
   double laser_score = 0.0;  // with source kLaser
 };
 
+// A relative pose between two nodes measured outside the graph: the camera's motion between
+// consecutive keyframes (session::VisualStage), with its weights (residual = weights .* error,
+// in the `to` node's frame, as Constraint2D).
+struct NodeLink2D {
+  int from = 0;
+  int to = 0;  // from < to
+  common::Rigid2d T_from_to;
+  double translation_weight = 1.0;
+  double rotation_weight = 1.0;
+};
+
 // A trimmed node with its final pose (PoseGraph2D::TrimmedNodes).
 struct ArchivedNode2D {
   int node = 0;
@@ -137,6 +154,10 @@ class PoseGraph2D {
     // hardly better than the estimate (constraint_builder.min_correction_evidence_z; not
     // checkpointed).
     int loop_closures_ambiguous = 0;
+    // Node links held (AddNodeLink), and the local SLAM steps they cover whose scan pinned one
+    // direction only (linked_unmeasured_weight_fraction; not checkpointed).
+    int node_links = 0;
+    int linked_unmeasured_steps = 0;
     // Loop-closure searches queued and not yet finished: now, and the most at any time since
     // the graph was made (not checkpointed).
     int pending_searches = 0;
@@ -228,6 +249,11 @@ class PoseGraph2D {
   bool RemoveLoopConstraint(int id);
   // The loop closures (accepted or candidates) in the graph now.
   std::vector<Constraint2D> LoopConstraints() const;
+  // Adds a measured relative pose between two nodes; it takes part in every optimisation until
+  // either node is trimmed. False (and nothing added) unless from < to and both are held.
+  bool AddNodeLink(const NodeLink2D& link);
+  // The node links held, in the order added.
+  std::vector<NodeLink2D> NodeLinks() const;
   // The path between node `node` and submap `submap` that the loop-closure drift bound allows
   // for (DriftExplainsCorrection): along the chain of nodes, or through a loop closure of the
   // last solved graph, whichever is shorter; empty if either is gone or unknown.
@@ -259,6 +285,10 @@ class PoseGraph2D {
     bool trimmed = false;  // cloud and inserted_into released
     // Path travelled in local SLAM's frame from the first node to this one.
     double path_m = 0.0;
+    // A node link measured the motion from the node before to this one (AddNodeLink), and
+    // this node's scan left this direction (its frame) unpinned; zero when it pinned both.
+    bool motion_linked = false;
+    Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
   };
   struct SubmapData {
     std::shared_ptr<const mapping::Submap2D> submap;
@@ -380,6 +410,7 @@ class PoseGraph2D {
   int next_loop_id_ = 0;                  // guarded by mutex_
   bool report_loop_closures_ = false;     // guarded by mutex_
   std::vector<int> new_loop_closures_;    // guarded by mutex_, ids
+  std::vector<NodeLink2D> node_links_;    // guarded by mutex_
   // The loop closure with `id`, or null.
   Constraint2D* FindLoopLocked(int id);
   // Records an accepted laser loop closure for TakeNewLoopClosures.
@@ -413,6 +444,7 @@ struct PoseGraphState2D {
   std::vector<common::Rigid2d> T_map_nodes;
   std::vector<common::Rigid2d> T_map_submaps;
   std::vector<Constraint2D> constraints;
+  std::vector<NodeLink2D> node_links;
   std::vector<PendingSearch2D> searches_in_flight;
   bool optimization_pending = false;
   int nodes_since_optimization = 0;

@@ -49,6 +49,11 @@ struct NodeToNodeConstraint2D {
   common::Rigid2d T_from_to;
   double translation_weight = 1.0;
   double rotation_weight = 1.0;
+  // Along this unit vector (in the measurement's frame) the translation weight is
+  // weak_weight_fraction of translation_weight; zero: the full weight every way.
+  Eigen::Vector2d weak_direction = Eigen::Vector2d::Zero();
+  double weak_weight_fraction = 1.0;
+  bool robust = false;  // Huber loss (a measurement that may be wrong)
 };
 
 }  // namespace pose_graph

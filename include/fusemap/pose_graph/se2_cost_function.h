@@ -33,6 +33,11 @@ Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotatio
 // that the information stays positive definite for SqrtInformation.
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& unmeasured_direction);
+// The same with `weight_fraction` of translation_weight along `weak_direction` (a unit vector in
+// the measurement's frame; zero: full weight every way), in (0, 1].
+Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& weak_direction,
+                                       double weight_fraction);
 
 // The unwhitened error e above, for reporting and tests.
 Eigen::Vector3d Se2EdgeError(const common::Rigid2d& T_map_from, const common::Rigid2d& T_map_to,

@@ -39,6 +39,10 @@ struct ScanInformation2D {
 // when they spread along one direction at least 10 times more than across it.
 ScanInformation2D ComputeScanInformation2D(const sensor::PointCloud2d& cloud);
 
+// The direction (in the cloud's frame) a match of `cloud` can slide along: the weakest
+// direction when TranslationRatio() < min_ratio, else zero.
+Eigen::Vector2d UnpinnedDirection2D(const sensor::PointCloud2d& cloud, double min_ratio);
+
 // A cell more likely occupied than free confirms the scan point that lands on it.
 constexpr float kConfirmingProbability = 0.5f;
 
