@@ -63,6 +63,16 @@ struct ContradictionRules {
   }
 };
 
+struct MotionLinkRules {
+  const MotionLinkOptions& o;
+  void Check(common::OptionChecker* c) const {
+    c->Require(o.translation_weight > 0.0, "translation_weight", "must be > 0");
+    c->Require(o.rotation_weight > 0.0, "rotation_weight", "must be > 0");
+    c->Require(o.max_disagreement_m > 0.0, "max_disagreement_m", "must be > 0");
+    c->Require(o.max_disagreement_rad > 0.0, "max_disagreement_rad", "must be > 0");
+  }
+};
+
 struct ArbitrationRules {
   const visual_loop::ArbitrationOptions& o;
   void Check(common::OptionChecker* c) const {
@@ -96,6 +106,7 @@ void VisualLoopConfig::Check(common::OptionChecker* check) const {
   check->Nested("planar", PlanarRules{checker.planar});
   check->Nested("contradiction", ContradictionRules{checker});
   check->Nested("arbitration", ArbitrationRules{arbitration});
+  check->Nested("motion_links", MotionLinkRules{motion_links});
 }
 
 bool VisualLoopConfig::IsValid(std::string* error) const {
@@ -180,6 +191,14 @@ VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader) {
   arbitration.Get("forced_correction_rad_per_m",
                   &config.arbitration.forced_correction_rad_per_m);
   arbitration.CheckOptions(ArbitrationRules{config.arbitration});
+
+  common::ConfigReader& motion_links = reader.Child("motion_links");
+  motion_links.Get("enabled", &config.motion_links.enabled);
+  motion_links.Get("translation_weight", &config.motion_links.translation_weight);
+  motion_links.Get("rotation_weight", &config.motion_links.rotation_weight);
+  motion_links.Get("max_disagreement_m", &config.motion_links.max_disagreement_m);
+  motion_links.Get("max_disagreement_rad", &config.motion_links.max_disagreement_rad);
+  motion_links.CheckOptions(MotionLinkRules{config.motion_links});
 
   reader.CheckOptions(config);
   std::string error;

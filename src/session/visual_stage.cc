@@ -15,6 +15,9 @@ namespace fusemap {
 namespace session {
 namespace {
 
+// MotionLinkOptions::translation_weight is that of a link whose standard error is this.
+constexpr double kMotionLinkReferenceSigmaM = 0.001;
+
 pose_graph::Constraint2D::Source ToGraphSource(visual_loop::LoopSource source) {
   switch (source) {
     case visual_loop::LoopSource::kLaser:
@@ -54,11 +57,11 @@ std::string VisualSummaryLine(const VisualStageStats& s) {
   std::snprintf(line, sizeof(line),
                 "visual_loop: keyframes=%d candidates=%d verified=%d refused=%d "
                 "laser_loops_checked=%d laser_confirmed=%d visual_override=%d visual_forced=%d "
-                "laser_kept=%d laser_rejected=%d visual_rejected=%d frames_in=%lld "
-                "frames_offered=%lld frames_dropped=%lld",
+                "laser_kept=%d laser_rejected=%d visual_rejected=%d motion_links=%d "
+                "motion_links_refused=%d frames_in=%lld frames_offered=%lld frames_dropped=%lld",
                 s.checker.keyframes, s.checker.candidates, s.checker.verified, s.checker.rejected,
                 s.laser_loops_checked, s.confirmed, s.overridden, s.forced, s.kept, s.rejected,
-                s.visual_rejected,
+                s.visual_rejected, s.motion_links, s.motion_links_refused,
                 static_cast<long long>(s.frames_in), static_cast<long long>(s.frames_offered),
                 static_cast<long long>(s.frames_dropped_no_pose + s.frames_dropped_pending));
   return line;
@@ -145,8 +148,53 @@ void VisualStage::Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T
   last_keyframe_stamp_s_ = frame.stamp_s;
   keyframes_[result.keyframe_id] = {binding->node, binding->submap,
                                     binding->T_local_node.inverse() * T_local_base};
+  if (config_.motion_links.enabled) LinkMotion(result.keyframe_id, T_local_base);
+  last_keyframe_id_ = result.keyframe_id;
+  T_local_last_keyframe_base_ = T_local_base;
   if (result.loop) HandleVisualLoop(*result.loop);
   ReleaseTrimmedSubmaps();
+}
+
+void VisualStage::LinkMotion(int id, const common::Rigid2d& T_local_base) {
+  const auto previous = keyframes_.find(last_keyframe_id_);
+  const auto current = keyframes_.find(id);
+  // Keyframes of one node (the robot standing) measure no motion between nodes.
+  if (previous == keyframes_.end() || current == keyframes_.end() ||
+      previous->second.node >= current->second.node) {
+    return;
+  }
+  const common::Rigid2d expected = T_local_last_keyframe_base_.inverse() * T_local_base;
+  const visual_loop::VisualCheckResult result =
+      checker_.CheckPlace(id, last_keyframe_id_, expected);
+  if (result.check != visual_loop::VisualCheck::kVerified) {
+    ++stats_.motion_links_refused;
+    return;
+  }
+  // Local SLAM's motion over a keyframe spacing is good to centimetres; a camera measurement
+  // far from it matched the wrong thing.
+  const common::Rigid2d& measured = result.constraint->T_match_base_query_base;
+  const common::Rigid2d difference = expected.inverse() * measured;
+  if (difference.translation().norm() > config_.motion_links.max_disagreement_m ||
+      std::abs(difference.angle_rad()) > config_.motion_links.max_disagreement_rad) {
+    ++stats_.motion_links_refused;
+    return;
+  }
+  pose_graph::NodeLink2D link;
+  link.from = previous->second.node;
+  link.to = current->second.node;
+  link.T_from_to = previous->second.T_node_base * measured * current->second.T_node_base.inverse();
+  // Weighted by the verifier's standard error of the translation: in the corridor world the
+  // links whose stated error is in the worst quarter are 3x as far off as the best quarter.
+  const Eigen::Matrix3d& covariance = result.constraint->covariance;
+  const double sigma_m = std::sqrt(0.5 * (covariance(0, 0) + covariance(1, 1)));
+  link.translation_weight = config_.motion_links.translation_weight * kMotionLinkReferenceSigmaM /
+                            std::max(sigma_m, 1e-4);
+  link.rotation_weight = config_.motion_links.rotation_weight;
+  if (graph_->AddNodeLink(link)) {
+    ++stats_.motion_links;
+  } else {
+    ++stats_.motion_links_refused;
+  }
 }
 
 std::optional<common::Rigid2d> VisualStage::T_submap_base(int submap, int id) const {

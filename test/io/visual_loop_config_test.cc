@@ -37,7 +37,9 @@ TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
                     "  keyframes: {min_translation_m: 0.5, max_features: 800}\n"
                     "  recognition: {temporal_consistency: 1}\n"
                     "  verification: {min_inliers: 40}\n"
-                    "  arbitration: {max_translation_disagreement_m: 0.2}\n",
+                    "  arbitration: {max_translation_disagreement_m: 0.2}\n"
+                    "  motion_links: {enabled: false, translation_weight: 5e4,\n"
+                    "                 max_disagreement_m: 0.1}\n",
                     &config, &error))
       << error;
   const VisualLoopConfig& v = config.visual_loop;
@@ -49,6 +51,10 @@ TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
   EXPECT_EQ(v.checker.detector.recognition.temporal_consistency, 1);
   EXPECT_EQ(v.checker.detector.verification.min_inliers, 40);
   EXPECT_EQ(v.arbitration.max_translation_disagreement_m, 0.2);
+  EXPECT_FALSE(v.motion_links.enabled);
+  EXPECT_EQ(v.motion_links.translation_weight, 5e4);
+  EXPECT_EQ(v.motion_links.max_disagreement_m, 0.1);
+  EXPECT_EQ(v.motion_links.max_disagreement_rad, MotionLinkOptions().max_disagreement_rad);
   EXPECT_EQ(ResolveVocabularyPath("/abs/v.bin"), "/abs/v.bin");
   EXPECT_EQ(ResolveVocabularyPath("data/v.bin"), std::string(FUSEMAP_SOURCE_DIR) + "/data/v.bin");
 }
@@ -66,6 +72,9 @@ TEST(VisualLoopConfigTest, BadValuesAreRefusedWithKeyPathAndLine) {
 
   EXPECT_FALSE(Parse("visual_loop:\n  max_queue_frames: 0\n", &config, &error));
   EXPECT_NE(error.find("visual_loop.max_queue_frames"), std::string::npos) << error;
+
+  EXPECT_FALSE(Parse("visual_loop:\n  motion_links: {rotation_weight: 0}\n", &config, &error));
+  EXPECT_NE(error.find("visual_loop.motion_links.rotation_weight"), std::string::npos) << error;
 
   EXPECT_FALSE(Parse("visual_loop:\n  keyfrmaes: {}\n", &config, &error));
   EXPECT_NE(error.find("visual_loop.keyfrmaes"), std::string::npos) << error;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <string>
@@ -52,10 +53,10 @@ pose_graph::PoseGraphOptions2D GraphOptions() {
 // textured box around the arc takes a frame at every scan, at the true pose.
 class VisualRun {
  public:
-  VisualRun()
+  explicit VisualRun(io::VisualLoopConfig config = StageConfig())
       : graph_(GraphOptions(), &executor_),
         camera_(2.0, 0.0, 10.0, 8.0, /*seed=*/7),
-        stage_(std::make_unique<VisualStage>(StageConfig(), CameraOptions(), &graph_)) {}
+        stage_(std::make_unique<VisualStage>(config, CameraOptions(), &graph_)) {}
 
   // A new stage on the same graph, continuing from `state` (a restart).
   void RestartStage(io::VisualKeyframesState state) {
@@ -221,6 +222,41 @@ TEST(VisualStageTest, ForcedConfirmedOverriddenAndRejectedThroughThePoseGraph) {
   EXPECT_EQ(after.confirmed, 1);
   EXPECT_EQ(after.overridden, 1);
   EXPECT_EQ(after.rejected, 1);
+}
+
+// Each keyframe's motion from the one before, as the camera measured it, joins the graph.
+TEST(VisualStageTest, MotionLinksMeasureTheTrueMotionBetweenKeyframes) {
+  VisualRun run;
+  run.Drive(40);
+  const VisualStageStats stats = run.stage().stats();
+  const std::vector<pose_graph::NodeLink2D> links = run.graph().NodeLinks();
+  EXPECT_GE(stats.motion_links, stats.checker.keyframes - 3);
+  EXPECT_EQ(static_cast<int>(links.size()), stats.motion_links);
+  int previous_to = 0;
+  std::vector<double> errors_m;
+  for (const pose_graph::NodeLink2D& link : links) {
+    // Between consecutive keyframes: each link starts at or after the end of the one before.
+    EXPECT_GE(link.from, previous_to);
+    EXPECT_LT(link.from, link.to);
+    previous_to = link.to;
+    // The camera sees the true motion (local SLAM's is 1 % long and 0.1 deg a step off).
+    const common::Rigid2d truth = TruePose(link.from).inverse() * TruePose(link.to);
+    errors_m.push_back(DistanceM(link.T_from_to, truth));
+    EXPECT_LT(errors_m.back(), 0.03) << link.from << " -> " << link.to;
+    EXPECT_LT(std::abs(common::NormalizeAngle(link.T_from_to.angle_rad() - truth.angle_rad())),
+              common::DegToRad(1.0));
+    EXPECT_GT(link.translation_weight, 0.0);
+  }
+  ASSERT_FALSE(errors_m.empty());
+  std::sort(errors_m.begin(), errors_m.end());
+  EXPECT_LT(errors_m[errors_m.size() / 2], 0.006);
+
+  io::VisualLoopConfig off = StageConfig();
+  off.motion_links.enabled = false;
+  VisualRun without(off);
+  without.Drive(40);
+  EXPECT_EQ(without.stage().stats().motion_links, 0);
+  EXPECT_TRUE(without.graph().NodeLinks().empty());
 }
 
 // A restart between the laps: the keyframes of the first lap, through the checkpoint file's

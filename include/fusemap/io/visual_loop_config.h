@@ -14,6 +14,23 @@ namespace io {
 
 // The `visual_loop:` section: the ORB visual loop checker beside the laser loop closure
 // (session::VisualStage). Off by default.
+// The camera's motion between consecutive keyframes as node links (pose_graph::NodeLink2D):
+// each new keyframe is verified against the one before it, and the relative pose found joins
+// the graph. In a corridor of plain walls local SLAM measures nothing along the corridor and
+// the map takes the odometry's scale there; a camera that sees texture measures it.
+struct MotionLinkOptions {
+  bool enabled = true;
+  // Residual = weights .* error, as loop constraints. translation_weight is that of a link the
+  // verifier measured to 1 mm (standard error); one measured to s mm gets 1/s of it. Against
+  // local SLAM's 1e5 a step, which along a direction its scan left unpinned counts
+  // global_slam.linked_unmeasured_weight_fraction of that (so that the camera decides it).
+  double translation_weight = 2e5;
+  double rotation_weight = 1e4;
+  // A link that differs from local SLAM's motion by more than this is a wrong match: refused.
+  double max_disagreement_m = 0.3;
+  double max_disagreement_rad = 0.1;
+};
+
 struct VisualLoopConfig {
   bool enabled = false;
   // As written: absolute, or relative to the source tree (FUSEMAP_SOURCE_DIR).
@@ -43,6 +60,7 @@ struct VisualLoopConfig {
   int max_pending_frames = 16;
   // fusemapd: frames queued for the checker's own thread; when full the oldest is dropped.
   int max_queue_frames = 8;
+  MotionLinkOptions motion_links;
 
   // Each field's rule, against its key (see common::OptionChecker).
   void Check(common::OptionChecker* check) const;

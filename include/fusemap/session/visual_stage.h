@@ -43,11 +43,16 @@ struct VisualStageStats {
   int kept = 0;                         // laser_kept
   int rejected = 0;                     // laser_rejected
   int visual_rejected = 0;              // visual_rejected
+  // Keyframes whose motion from the keyframe before joined the graph as a node link, and
+  // those whose motion the camera did not verify or measured too far from local SLAM's.
+  int motion_links = 0;
+  int motion_links_refused = 0;
 };
 
 // "visual_loop: keyframes=… candidates=… verified=… refused=… laser_loops_checked=…
 // laser_confirmed=… visual_override=… visual_forced=… laser_kept=… laser_rejected=…
-// visual_rejected=… frames_in=… frames_offered=… frames_dropped=…" (no newline):
+// visual_rejected=… motion_links=… motion_links_refused=… frames_in=… frames_offered=…
+// frames_dropped=…" (no newline):
 // fusemap_offline's line.
 std::string VisualSummaryLine(const VisualStageStats& stats);
 
@@ -61,6 +66,10 @@ std::string VisualSummaryLine(const VisualStageStats& stats);
 // - each visual loop the checker finds by appearance alone is arbitrated against a laser loop
 //   of the same node/submap pair if there is one, and otherwise forced into the graph unless
 //   the correction it asks is more than drift explains (rejected).
+// - with motion links on (config.motion_links), each new keyframe is verified against the
+//   keyframe before it, and the camera's motion between them joins the graph as a node link
+//   (PoseGraph2D::AddNodeLink) unless it differs from local SLAM's by more than a wrong match
+//   would.
 // Every decision is recorded (records(), DIR/loops.tsv). A laser loop waits until the frames
 // up to its node have been seen (or max_node_gap more nodes came), so that its place has
 // keyframes. Keyframes of trimmed submaps are released.
@@ -108,6 +117,9 @@ class VisualStage {
   void ProcessPending();
   void Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base);
   void HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop);
+  // Verifies keyframe `id` against the keyframe before it and adds the motion between them to
+  // the graph as a node link (config.motion_links).
+  void LinkMotion(int id, const common::Rigid2d& T_local_base);
   // Arbitrates the waiting laser loops whose place the camera has had its chance to see.
   void ProcessLaserLoops(bool all);
   void CheckLaserLoop(const pose_graph::LoopClosure2D& loop);
@@ -135,6 +147,9 @@ class VisualStage {
   std::vector<visual_loop::ArbitrationRecord> records_;
   double newest_stamp_s_ = -1e300;
   double last_keyframe_stamp_s_ = -1e300;
+  // The newest keyframe and its base's local SLAM pose (-1: none since the start or a resume).
+  int last_keyframe_id_ = -1;
+  common::Rigid2d T_local_last_keyframe_base_;
   int newest_node_ = -1;
   int newest_offered_node_ = -1;
   bool finished_ = false;
