@@ -755,10 +755,6 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   Stats stats = stats_;
   stats.constraints = static_cast<int>(constraints_.size());
   stats.node_links = static_cast<int>(node_links_.size());
-  stats.linked_unmeasured_steps =
-      static_cast<int>(std::count_if(nodes_.begin(), nodes_.end(), [](const NodeData& node) {
-        return node.motion_linked && !node.unmeasured_direction.isZero();
-      }));
   stats.loop_closure_candidates = static_cast<int>(
       std::count_if(constraints_.begin(), constraints_.end(), [](const Constraint2D& c) {
         return c.tag == Constraint2D::kLoopClosureCandidate;
@@ -776,6 +772,7 @@ PoseGraph2D::Stats PoseGraph2D::stats() const {
   for (const NodeData& node : nodes_) {
     stats.node_bytes += sizeof(NodeData) + node.cloud.capacity() * sizeof(Eigen::Vector2f) +
                         node.inserted_into.capacity() * sizeof(int);
+    stats.linked_unmeasured_steps += node.motion_linked && !node.unmeasured_direction.isZero();
   }
   return stats;
 }

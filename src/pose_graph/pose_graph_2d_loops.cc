@@ -102,32 +102,51 @@ std::vector<Constraint2D> PoseGraph2D::LoopConstraints() const {
   return loops;
 }
 
-bool PoseGraph2D::AddNodeLink(const NodeLink2D& link) {
-  // The scans of the steps the link covers are judged outside the lock (a fraction of a
-  // millisecond each, on the caller's thread): local SLAM adds nodes meanwhile.
-  std::vector<std::pair<int, sensor::PointCloud2d>> clouds;
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (!(link.from < link.to) || NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) {
-      return false;
-    }
-    for (int slot = SlotLocked(link.from) + 1; slot <= SlotLocked(link.to); ++slot) {
-      if (!nodes_[slot].motion_linked) clouds.emplace_back(nodes_[slot].index, nodes_[slot].cloud);
-    }
+PoseGraph2D::StepScans PoseGraph2D::UnjudgedStepsLocked(const NodeLink2D& link) const {
+  StepScans steps;
+  const int from = SlotLocked(link.from);
+  const int to = SlotLocked(link.to);
+  if (from < 0 || to < 0) return steps;
+  for (int slot = from + 1; slot <= to; ++slot) {
+    const NodeData& node = nodes_[slot];
+    if (!node.motion_linked && !node.trimmed) steps.emplace_back(node.index, node.cloud);
   }
+  return steps;
+}
+
+PoseGraph2D::StepDirections PoseGraph2D::JudgeSteps(const StepScans& steps) const {
   const double min_ratio = options_.constraint_builder.min_translation_information_ratio;
-  std::vector<std::pair<int, Eigen::Vector2d>> directions;
-  for (const auto& [node, cloud] : clouds) {
+  StepDirections directions;
+  for (const auto& [node, cloud] : steps) {
     directions.emplace_back(node, mapping::UnpinnedDirection2D(cloud, min_ratio));
   }
-  std::lock_guard<std::mutex> lock(mutex_);
-  if (NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) return false;
+  return directions;
+}
+
+void PoseGraph2D::MarkJudgedStepsLocked(const StepDirections& directions) {
   for (const auto& [node, direction] : directions) {
     if (NodeGoneLocked(node)) continue;
     NodeData& data = NodeLocked(node);
     data.motion_linked = true;
     data.unmeasured_direction = direction;
   }
+}
+
+bool PoseGraph2D::AddNodeLink(const NodeLink2D& link) {
+  // The scans of the steps the link covers are judged outside the lock (a fraction of a
+  // millisecond each, on the caller's thread): local SLAM adds nodes meanwhile.
+  StepScans steps;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!(link.from < link.to) || NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) {
+      return false;
+    }
+    steps = UnjudgedStepsLocked(link);
+  }
+  const StepDirections directions = JudgeSteps(steps);
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (NodeGoneLocked(link.from) || NodeGoneLocked(link.to)) return false;
+  MarkJudgedStepsLocked(directions);
   node_links_.push_back(link);
   return true;
 }

@@ -2,7 +2,6 @@
 #include <cassert>
 #include <map>
 
-#include "fusemap/mapping/scan_matching/scan_information_2d.h"
 #include "fusemap/pose_graph/pose_graph_2d.h"
 
 namespace fusemap {
@@ -74,17 +73,9 @@ void PoseGraph2D::RestoreState(
     constraints_ = state.constraints;
     // Which local SLAM steps the links cover, and how their scans pinned them, is recomputed.
     for (const NodeLink2D& link : state.node_links) {
-      const int from = SlotLocked(link.from);
-      const int to = SlotLocked(link.to);
-      if (from < 0 || to < 0) continue;
+      if (SlotLocked(link.from) < 0 || SlotLocked(link.to) < 0) continue;
       node_links_.push_back(link);
-      for (int slot = from + 1; slot <= to; ++slot) {
-        NodeData& node = nodes_[slot];
-        if (node.motion_linked || node.trimmed) continue;
-        node.motion_linked = true;
-        node.unmeasured_direction = mapping::UnpinnedDirection2D(
-            node.cloud, options_.constraint_builder.min_translation_information_ratio);
-      }
+      MarkJudgedStepsLocked(JudgeSteps(UnjudgedStepsLocked(link)));
     }
     // The shortcuts of the drift bound, taken from every accepted loop closure as if all had
     // been solved (the checkpoint does not say which were): at most one optimisation early.

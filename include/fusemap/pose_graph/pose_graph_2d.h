@@ -7,6 +7,7 @@
 #include <mutex>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fusemap/common/config_reader.h"
@@ -411,6 +412,14 @@ class PoseGraph2D {
   bool report_loop_closures_ = false;     // guarded by mutex_
   std::vector<int> new_loop_closures_;    // guarded by mutex_, ids
   std::vector<NodeLink2D> node_links_;    // guarded by mutex_
+  // A node link's steps: the held, untrimmed nodes after link.from up to link.to that no link
+  // has judged yet, with their scans; what each scan left unpinned (JudgeSteps, no lock needed:
+  // AddNodeLink runs it outside the lock); and marking them motion_linked with it.
+  using StepScans = std::vector<std::pair<int, sensor::PointCloud2d>>;
+  using StepDirections = std::vector<std::pair<int, Eigen::Vector2d>>;
+  StepScans UnjudgedStepsLocked(const NodeLink2D& link) const;
+  StepDirections JudgeSteps(const StepScans& steps) const;
+  void MarkJudgedStepsLocked(const StepDirections& directions);
   // The loop closure with `id`, or null.
   Constraint2D* FindLoopLocked(int id);
   // Records an accepted laser loop closure for TakeNewLoopClosures.
