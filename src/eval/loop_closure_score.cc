@@ -72,16 +72,20 @@ LoopScore ScoreLoops(const std::vector<LoopRecord>& loops, const std::vector<Sub
       const common::Rigid2d difference = T_submap_node_true.inverse() * loop.T_submap_node;
       scored.scored = true;
       // A loop held across a corridor only asserts nothing along it (its translation there is
-      // the graph's estimate): only the error across counts.
+      // the graph's estimate), nor the turn that goes with sliding round a curved one: only the
+      // error across counts, with the heading it has at the true place along the corridor.
       Eigen::Vector2d error_m = difference.translation();
+      double error_rad = difference.angle_rad();
       const double unmeasured_norm = loop.unmeasured_direction.norm();
       if (unmeasured_norm > 0.0) {
         const Eigen::Vector2d along = loop.unmeasured_direction / unmeasured_norm;
-        error_m -= error_m.dot(along) * along;
+        const double along_m = error_m.dot(along);
+        error_m -= along_m * along;
+        error_rad -= along_m * loop.unmeasured_turn_rad_per_m;
         ++score.held_across_only;
       }
       scored.translation_error_m = error_m.norm();
-      scored.rotation_error_deg = WrappedDeg(difference.angle_rad());
+      scored.rotation_error_deg = WrappedDeg(error_rad);
       scored.wrong = scored.translation_error_m > options.max_translation_error_m ||
                      scored.rotation_error_deg > options.max_rotation_error_deg;
       if (scored.wrong) ++score.wrong_by_decision[loop.decision];

@@ -144,6 +144,14 @@ bool ReadLoops(std::istream& in, const std::string& origin, std::vector<eval::Lo
          !reader.Number(f[ux + 1], "unmeasured_y", &loop.unmeasured_direction.y(), error))) {
       return false;
     }
+    // Likewise the turn that goes with it: files without the column slide straight.
+    const auto turn = std::find(header.begin(), header.end(), "unmeasured_turn_rad_per_m");
+    const size_t ut = static_cast<size_t>(turn - header.begin());
+    if (turn != header.end() && ut < f.size() &&
+        !reader.Number(f[ut], "unmeasured_turn_rad_per_m", &loop.unmeasured_turn_rad_per_m,
+                       error)) {
+      return false;
+    }
     loops->push_back(loop);
   }
   return error->empty();

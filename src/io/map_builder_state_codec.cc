@@ -161,6 +161,8 @@ void EncodeMapBuilderState(const pose_graph::MapBuilderState2D& state, bool comp
     // Format 5: the direction a laser loop closure does not measure (0, 0 when none).
     out->F64(c.unmeasured_direction.x());
     out->F64(c.unmeasured_direction.y());
+    // Format 9: the turn that goes with it (a curved wall).
+    out->F64(c.unmeasured_turn_rad_per_m);
   }
   out->U64(g.searches_in_flight.size());
   for (const auto& s : g.searches_in_flight) {
@@ -342,7 +344,7 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
       if (!DecodeRigid2d(in, &T)) return false;
     }
   }
-  if (!in->Count(78, &n)) return false;
+  if (!in->Count(86, &n)) return false;
   g.constraints.resize(n);
   for (auto& c : g.constraints) {
     uint8_t tag = 0, source = 0;
@@ -350,7 +352,8 @@ bool DecodeMapBuilderState(ByteReader* in, pose_graph::MapBuilderState2D* state)
     if (!in->I32(&c.submap) || !in->I32(&c.node) || !DecodeRigid2d(in, &c.T_submap_node) ||
         !in->F64(&c.translation_weight) || !in->F64(&c.rotation_weight) || !in->U8(&tag) ||
         !in->U8(&source) || !in->I32(&c.loop_id) || !in->F64(&c.laser_score) ||
-        !in->F64(&unmeasured_x) || !in->F64(&unmeasured_y)) {
+        !in->F64(&unmeasured_x) || !in->F64(&unmeasured_y) ||
+        !in->F64(&c.unmeasured_turn_rad_per_m)) {
       return false;
     }
     c.unmeasured_direction = Eigen::Vector2d(unmeasured_x, unmeasured_y);

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -16,6 +17,11 @@ constexpr int kNeighbours = 4;
 constexpr double kMaxNeighbourDistanceM = 2.0;
 // Spread along the line against across it, as a ratio of variances (a factor ~3.2 in metres).
 constexpr double kMinLineVarianceRatio = 10.0;
+// A slide that turns less than this (a wall curving with a radius above 20 m) is taken as
+// straight: a straight corridor's few points off its walls (a door frame) give it a turn of up
+// to 0.02 rad/m (simulated corridor world) that is not there, and a slide of metres along the
+// corridor would turn that into a heading error of degrees.
+constexpr double kMinTurnRadPerM = 0.05;
 
 }  // namespace
 
@@ -83,6 +89,10 @@ ScanInformation2D ComputeInformation(const sensor::PointCloud2d& cloud,
   result.weakest_translation = std::max(0.0, eigen.eigenvalues()(0));
   result.strongest_translation = std::max(0.0, eigen.eigenvalues()(1));
   result.weakest_direction = eigen.eigenvectors().col(0).normalized();
+  // The angle that minimises the cost for that translation (the one the Schur complement
+  // assumed).
+  const double turn_rad_per_m = H_aa > 1e-12 ? -H_ta.dot(result.weakest_direction) / H_aa : 0.0;
+  if (std::abs(turn_rad_per_m) >= kMinTurnRadPerM) result.weakest_turn_rad_per_m = turn_rad_per_m;
   return result;
 }
 

@@ -1,10 +1,26 @@
 #include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 
+#include <cmath>
+
 #include "fusemap/mapping/scan_matching/match_evidence_2d.h"
 #include "fusemap/mapping/scan_matching/scan_information_2d.h"
 
 namespace fusemap {
 namespace pose_graph {
+namespace {
+
+// The motion along an arc that starts in the direction of `translation_m`, is as long as it is
+// and turns `turn_rad` at a constant rate: SE(2)'s exponential of that twist.
+common::Rigid2d ArcMotion2D(const Eigen::Vector2d& translation_m, double turn_rad) {
+  if (std::abs(turn_rad) < 1e-9) return common::Rigid2d(translation_m, turn_rad);
+  const double a = std::sin(turn_rad) / turn_rad;
+  const double b = (1.0 - std::cos(turn_rad)) / turn_rad;
+  return common::Rigid2d(Eigen::Vector2d(a * translation_m.x() - b * translation_m.y(),
+                                         b * translation_m.x() + a * translation_m.y()),
+                         turn_rad);
+}
+
+}  // namespace
 
 ConstraintBuilderOptions2D::ConstraintBuilderOptions2D() {
   // Loop closures trust the occupancy fit more and the search start less than local SLAM does
@@ -147,16 +163,17 @@ std::optional<Constraint2D> LoopClosureMatcher2D::Match(
     const mapping::ScanInformation2D information = mapping::ComputeMatchedScanInformation2D(
         *grid, refined, cloud, mapping::kConfirmingProbability);
     if (information.TranslationRatio() < options_.min_translation_information_ratio) {
+      // Round a curved wall the slide is an arc: the node turns with it.
+      const double turn_rad_per_m = information.weakest_turn_rad_per_m;
       const Eigen::Vector2d along_in_submap =
           constraint.T_submap_node.rotation() * information.weakest_direction;
-      const Eigen::Vector2d slide =
-          along_in_submap.dot(T_submap_node_estimate.translation() -
-                              constraint.T_submap_node.translation()) *
-          along_in_submap;
+      const double slide_m = along_in_submap.dot(T_submap_node_estimate.translation() -
+                                                 constraint.T_submap_node.translation());
       constraint.T_submap_node =
-          common::Rigid2d(constraint.T_submap_node.translation() + slide,
-                          constraint.T_submap_node.angle_rad());
+          constraint.T_submap_node *
+          ArcMotion2D(slide_m * information.weakest_direction, slide_m * turn_rad_per_m);
       constraint.unmeasured_direction = information.weakest_direction;
+      constraint.unmeasured_turn_rad_per_m = turn_rad_per_m;
     }
   }
   // Against the estimate, on the grid as the loop-closure Ceres match reads it (never-observed

@@ -34,8 +34,8 @@ std::vector<LoopClosure2D> PoseGraph2D::TakeNewLoopClosures() {
   for (int id : new_loop_closures_) {
     const Constraint2D* c = FindLoopLocked(id);
     if (c == nullptr) continue;  // removed or trimmed meanwhile
-    closures.push_back(
-        {id, c->node, c->submap, c->T_submap_node, c->laser_score, c->unmeasured_direction});
+    closures.push_back({id, c->node, c->submap, c->T_submap_node, c->laser_score,
+                        c->unmeasured_direction, c->unmeasured_turn_rad_per_m});
   }
   new_loop_closures_.clear();
   return closures;
@@ -58,6 +58,8 @@ int PoseGraph2D::AddLoopConstraint(const ExternalLoopConstraint2D& external) {
   constraint.tag = Constraint2D::kInterSubmap;
   constraint.source = external.source;
   constraint.laser_score = external.laser_score;
+  constraint.unmeasured_direction = external.unmeasured_direction;
+  constraint.unmeasured_turn_rad_per_m = external.unmeasured_turn_rad_per_m;
   constraint.loop_id = next_loop_id_++;
   constraints_.push_back(constraint);
   NoteAcceptedLocked(constraint);
@@ -69,7 +71,8 @@ bool PoseGraph2D::ReplaceLoopConstraint(int id, const ExternalLoopConstraint2D& 
   Constraint2D* c = FindLoopLocked(id);
   if (c == nullptr) return false;
   c->T_submap_node = external.T_submap_node;
-  c->unmeasured_direction = Eigen::Vector2d::Zero();  // a visual loop measures every way
+  c->unmeasured_direction = external.unmeasured_direction;
+  c->unmeasured_turn_rad_per_m = external.unmeasured_turn_rad_per_m;
   c->translation_weight = external.translation_weight;
   c->rotation_weight = external.rotation_weight;
   c->source = external.source;

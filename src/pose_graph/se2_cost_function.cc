@@ -91,22 +91,34 @@ Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotatio
       .asDiagonal();
 }
 
-Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
-                                       const Eigen::Vector2d& unmeasured_direction) {
+Eigen::Matrix3d InformationWithoutMode(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& unmeasured_direction,
+                                       double turn_rad_per_m) {
+  const Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
+  if (unmeasured_direction.isZero()) return information;
+  const Eigen::Vector2d d = unmeasured_direction.normalized();
   // 1e-6 of the information is 1e-3 of the weight.
-  return InformationFromWeights(translation_weight, rotation_weight, unmeasured_direction, 1e-3);
+  return WeakenMode(information, Eigen::Vector3d(d.x(), d.y(), turn_rad_per_m), 1e-3);
 }
 
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& weak_direction,
                                        double weight_fraction) {
-  Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
+  const Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
   if (weak_direction.isZero()) return information;
   const Eigen::Vector2d d = weak_direction.normalized();
-  information.topLeftCorner<2, 2>() =
-      translation_weight * translation_weight *
-      (Eigen::Matrix2d::Identity() - (1.0 - weight_fraction * weight_fraction) * d * d.transpose());
-  return information;
+  return WeakenMode(information, Eigen::Vector3d(d.x(), d.y(), 0.0), weight_fraction);
+}
+
+Eigen::Matrix3d WeakenMode(const Eigen::Matrix3d& information, const Eigen::Vector3d& mode,
+                           double weight_fraction) {
+  const Eigen::Vector3d held = information * mode;
+  const double along = mode.dot(held);
+  if (!(along > 0.0)) return information;
+  Eigen::Matrix3d result =
+      information - (1.0 - weight_fraction * weight_fraction) / along * held * held.transpose();
+  // Exactly symmetric for the Cholesky factorisation.
+  return 0.5 * (result + result.transpose());
 }
 
 Eigen::Vector3d Se2EdgeError(const common::Rigid2d& T_map_from, const common::Rigid2d& T_map_to,

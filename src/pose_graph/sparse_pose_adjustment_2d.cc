@@ -56,10 +56,11 @@ OptimizationSummary SparsePoseAdjustment2D::Solve(const OptimizationOptions& opt
   if (num_submaps > 0) graph.fixed[0] = true;
   graph.edges.reserve(constraints_.size() + node_to_node_constraints_.size());
   for (const Constraint2D& c : constraints_) {
-    graph.edges.push_back({c.submap, num_submaps + c.node, c.T_submap_node,
-                           InformationFromWeights(c.translation_weight, c.rotation_weight,
-                                                  c.unmeasured_direction),
-                           c.tag == Constraint2D::kInterSubmap});
+    graph.edges.push_back(
+        {c.submap, num_submaps + c.node, c.T_submap_node,
+         InformationWithoutMode(c.translation_weight, c.rotation_weight, c.unmeasured_direction,
+                                c.unmeasured_turn_rad_per_m),
+         c.tag == Constraint2D::kInterSubmap});
   }
   for (const NodeToNodeConstraint2D& c : node_to_node_constraints_) {
     graph.edges.push_back({num_submaps + c.from, num_submaps + c.to, c.T_from_to,

@@ -138,6 +138,7 @@ bool WriteLoopTables(const pose_graph::PoseGraph2D& graph, bool graph_loops, con
     record.laser = visual_loop::LoopMeasurement2D{c.T_submap_node};
     record.laser->laser_score = c.laser_score;
     record.laser->unmeasured_direction = c.unmeasured_direction;
+    record.laser->unmeasured_turn_rad_per_m = c.unmeasured_turn_rad_per_m;
     loops.push_back(record);
   }
   if (!io::WriteLoopsTsv(out + "loops.tsv", loops, error)) return false;

@@ -30,6 +30,18 @@ pose_graph::Constraint2D::Source ToGraphSource(visual_loop::LoopSource source) {
   return pose_graph::Constraint2D::kBoth;
 }
 
+// The laser side of an arbitration, from a loop constraint in the graph or a reported closure
+// (pose_graph::Constraint2D, pose_graph::LoopClosure2D: the same fields).
+template <typename LaserLoop>
+visual_loop::LoopMeasurement2D LaserMeasurement(const LaserLoop& loop) {
+  visual_loop::LoopMeasurement2D measurement;
+  measurement.T_submap_node = loop.T_submap_node;
+  measurement.laser_score = loop.laser_score;
+  measurement.unmeasured_direction = loop.unmeasured_direction;
+  measurement.unmeasured_turn_rad_per_m = loop.unmeasured_turn_rad_per_m;
+  return measurement;
+}
+
 }  // namespace
 
 visual_loop::CameraFrame ToCameraFrame(const sensor::RgbdFrame& frame,
@@ -53,15 +65,16 @@ visual_loop::CameraFrame ToCameraFrame(const sensor::RgbdFrame& frame,
 }
 
 std::string VisualSummaryLine(const VisualStageStats& s) {
-  char line[400];
+  char line[480];
   std::snprintf(line, sizeof(line),
                 "visual_loop: keyframes=%d candidates=%d verified=%d refused=%d "
-                "laser_loops_checked=%d laser_confirmed=%d visual_override=%d visual_forced=%d "
-                "laser_kept=%d laser_rejected=%d visual_rejected=%d motion_links=%d "
-                "motion_links_refused=%d frames_in=%lld frames_offered=%lld frames_dropped=%lld",
+                "laser_loops_checked=%d laser_confirmed=%d confirmed_along=%d visual_override=%d "
+                "visual_forced=%d laser_kept=%d laser_rejected=%d visual_rejected=%d "
+                "motion_links=%d motion_links_refused=%d frames_in=%lld frames_offered=%lld "
+                "frames_dropped=%lld",
                 s.checker.keyframes, s.checker.candidates, s.checker.verified, s.checker.rejected,
-                s.laser_loops_checked, s.confirmed, s.overridden, s.forced, s.kept, s.rejected,
-                s.visual_rejected, s.motion_links, s.motion_links_refused,
+                s.laser_loops_checked, s.confirmed, s.confirmed_along, s.overridden, s.forced,
+                s.kept, s.rejected, s.visual_rejected, s.motion_links, s.motion_links_refused,
                 static_cast<long long>(s.frames_in), static_cast<long long>(s.frames_offered),
                 static_cast<long long>(s.frames_dropped_no_pose + s.frames_dropped_pending));
   return line;
@@ -261,9 +274,7 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
   if (!visual) return;
   std::optional<visual_loop::LoopMeasurement2D> laser_measurement;
   if (laser) {
-    laser_measurement =
-        visual_loop::LoopMeasurement2D{laser->T_submap_node, Eigen::Matrix3d::Identity(),
-                                       laser->laser_score, 0, laser->unmeasured_direction};
+    laser_measurement = LaserMeasurement(*laser);
     const int id = laser->loop_id;
     laser_loops_.erase(std::remove_if(laser_loops_.begin(), laser_loops_.end(),
                                       [id](const pose_graph::LoopClosure2D& l) { return l.id == id; }),
@@ -302,8 +313,7 @@ void VisualStage::ProcessLaserLoops(bool all) {
 }
 
 void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
-  const visual_loop::LoopMeasurement2D laser{loop.T_submap_node, Eigen::Matrix3d::Identity(),
-                                             loop.laser_score, 0, loop.unmeasured_direction};
+  const visual_loop::LoopMeasurement2D laser = LaserMeasurement(loop);
   std::optional<visual_loop::LoopMeasurement2D> visual;
   visual_loop::VisualCheck check = visual_loop::VisualCheck::kNotChecked;
   std::string check_reason;
@@ -387,6 +397,15 @@ void VisualStage::Apply(const visual_loop::ArbitrationRecord& record, int laser_
     case visual_loop::LoopDecision::kLaserConfirmed:
       if (!graph_->SetLoopConstraintSource(laser_id, pose_graph::Constraint2D::kBoth)) return;
       ++stats_.confirmed;
+      // A laser loop held across a corridor only measured nothing along it (nor, round a
+      // curved one, the turn that goes with that): the camera's measurement of the same place
+      // joins it at the camera's weights, so the revisit says where along the corridor it is.
+      if (record.laser && record.visual && !record.laser->unmeasured_direction.isZero()) {
+        pose_graph::ExternalLoopConstraint2D along = constraint;
+        along.T_submap_node = record.visual->T_submap_node;
+        along.source = pose_graph::Constraint2D::kVisual;
+        if (graph_->AddLoopConstraint(along) >= 0) ++stats_.confirmed_along;
+      }
       break;
     case visual_loop::LoopDecision::kVisualOverride:
       constraint.source = pose_graph::Constraint2D::kVisual;

@@ -96,6 +96,28 @@ TEST(ScoreLoopsTest, ALoopHeldAcrossACorridorIsScoredAcrossIt) {
   EXPECT_EQ(score.wrong_accepted, 2);
 }
 
+TEST(ScoreLoopsTest, ALoopHeldAcrossARingCorridorIsScoredWithTheTurnThatGoesWithIt) {
+  // Node 1 faces along a ring corridor of radius 10 m; the loops put it 0.5 m further round
+  // (forward = the node's x axis), where the ring has turned 0.05 rad.
+  const Trajectory gt = FromPoses({{0, 0, 0}, {10, 0, 0.5 * common::kPi}});
+  std::vector<SubmapAnchor> submaps = {{0, 0, common::Rigid2d::Identity()}};
+  const common::Rigid2d further_round =
+      common::Rigid2d(10.0 * std::cos(0.05), 10.0 * std::sin(0.05), 0.5 * common::kPi + 0.05);
+  std::vector<LoopRecord> loops(2);
+  // Held across only, with the ring's turn: where it is round the ring is not its error.
+  loops[0] = {1, 0, "laser", 0.7, 0, "laser_kept", further_round};
+  loops[0].unmeasured_direction = Eigen::Vector2d(1.0, 0.0);
+  loops[0].unmeasured_turn_rad_per_m = 0.1;
+  // Held across a straight corridor: its heading is 2.9 degrees off.
+  loops[1] = loops[0];
+  loops[1].unmeasured_turn_rad_per_m = 0.0;
+  const LoopScore score = ScoreLoops(loops, submaps, gt, gt, LoopScoreOptions());
+  ASSERT_EQ(score.loops.size(), 2u);
+  EXPECT_LT(score.loops[0].translation_error_m, 0.02);
+  EXPECT_LT(score.loops[0].rotation_error_deg, 0.05);
+  EXPECT_NEAR(score.loops[1].rotation_error_deg, 2.865, 0.01);
+}
+
 }  // namespace
 }  // namespace eval
 }  // namespace fusemap

@@ -209,13 +209,14 @@ TEST(CheckpointTest, LoopSourcesIdsAndScoresRoundTripAndBadSourcesAreRejected) {
   EXPECT_NE(error.find("source"), std::string::npos) << error;
 }
 
-// A corridor loop closure keeps the direction it does not measure; a direction that is neither
-// zero nor a unit vector is an error.
+// A corridor loop closure keeps the direction it does not measure and the turn that goes with
+// it (a curved corridor); a direction that is neither zero nor a unit vector is an error.
 TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
   const CheckpointContents contents = WithOneMoreConstraint([](pose_graph::Constraint2D* c) {
     c->tag = pose_graph::Constraint2D::kInterSubmap;
     c->laser_score = 0.8125;
     c->unmeasured_direction = Eigen::Vector2d(0.6, -0.8);
+    c->unmeasured_turn_rad_per_m = -0.0625;
   });
   const std::string bytes = EncodeCheckpoint(contents, false);
   CheckpointContents read;
@@ -223,6 +224,7 @@ TEST(CheckpointTest, UnmeasuredDirectionsRoundTripAndBadOnesAreRejected) {
   ASSERT_TRUE(DecodeCheckpoint(bytes, "ckpt", &read, &error)) << error;
   EXPECT_EQ(read.state.pose_graph.constraints.back().unmeasured_direction,
             Eigen::Vector2d(0.6, -0.8));
+  EXPECT_EQ(read.state.pose_graph.constraints.back().unmeasured_turn_rad_per_m, -0.0625);
   EXPECT_TRUE(read.state.pose_graph.constraints.front().unmeasured_direction.isZero());
 
   // The direction follows the laser score.

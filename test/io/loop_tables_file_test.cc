@@ -81,6 +81,7 @@ TEST(LoopTablesFileTest, WrittenTablesReadBack) {
   loops[0].laser = visual_loop::LoopMeasurement2D{common::Rigid2d(1.25, -3.5, 0.75)};
   loops[0].laser->laser_score = 0.625;
   loops[0].laser->unmeasured_direction = Eigen::Vector2d(0.0, -1.0);
+  loops[0].laser->unmeasured_turn_rad_per_m = -0.125;
   std::vector<eval::SubmapAnchor> submaps = {{2, 60, common::Rigid2d(4, 5, -1.5)}};
   std::string error;
   ASSERT_TRUE(WriteLoopsTsv(dir + "/loops.tsv", loops, &error)) << error;
@@ -97,6 +98,7 @@ TEST(LoopTablesFileTest, WrittenTablesReadBack) {
   EXPECT_DOUBLE_EQ(loops_read[0].T_submap_node.x(), 1.25);
   EXPECT_DOUBLE_EQ(loops_read[0].T_submap_node.angle_rad(), 0.75);
   EXPECT_EQ(loops_read[0].unmeasured_direction, Eigen::Vector2d(0.0, -1.0));
+  EXPECT_DOUBLE_EQ(loops_read[0].unmeasured_turn_rad_per_m, -0.125);
   ASSERT_EQ(submaps_read.size(), 1u);
   EXPECT_EQ(submaps_read[0].first_node, 60);
   EXPECT_DOUBLE_EQ(submaps_read[0].T_map_submap.x(), 4.0);

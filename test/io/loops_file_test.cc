@@ -41,6 +41,7 @@ TEST(LoopsFileTest, HeaderThenOneLinePerDecision) {
   rejected.decision = visual_loop::LoopDecision::kLaserRejected;
   rejected.laser = laser;
   rejected.laser->unmeasured_direction = Eigen::Vector2d(0.6, 0.8);
+  rejected.laser->unmeasured_turn_rad_per_m = 0.0714;
   rejected.reason = "contradicted";
 
   const std::string path = ::testing::TempDir() + "/loops_file_test.tsv";
@@ -49,9 +50,9 @@ TEST(LoopsFileTest, HeaderThenOneLinePerDecision) {
   EXPECT_EQ(ReadAll(path),
             std::string(kLoopsTsvHeader) + "\n" +
                 "42\t3\tboth\t0.7100\t120\tvisual_override\t1.0000\t-2.0000\t0.20000\t0.5000\t"
-                "0.05000\t0.0000\t0.0000\tdisagree by a lot\n"
+                "0.05000\t0.0000\t0.0000\t0.00000\tdisagree by a lot\n"
                 "7\t0\tlaser\t0.7100\t0\tlaser_rejected\t1.5000\t-2.0000\t0.25000\t0.0000\t"
-                "0.00000\t0.6000\t0.8000\tcontradicted\n");
+                "0.00000\t0.6000\t0.8000\t0.07140\tcontradicted\n");
   EXPECT_FALSE(WriteLoopsTsv("/nonexistent/dir/loops.tsv", {}, &error));
   EXPECT_NE(error.find("/nonexistent/dir/loops.tsv"), std::string::npos) << error;
 }

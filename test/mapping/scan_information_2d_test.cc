@@ -44,6 +44,23 @@ TEST(ScanInformation2DTest, ACorridorHoldsAMatchAcrossItButNotAlongIt) {
   EXPECT_GT(std::abs(info.weakest_direction.dot(
                 Eigen::Vector2d(std::cos(axis_rad), std::sin(axis_rad)))),
             0.99);
+  // A straight corridor: sliding along it does not turn.
+  EXPECT_EQ(info.weakest_turn_rad_per_m, 0.0);
+}
+
+TEST(ScanInformation2DTest, ARingCorridorSlidesRoundItsCentreAndTurnsWithIt) {
+  // Radius 7 m between walls at 6 and 8 m, facing along the ring: every point of it looks the
+  // same, so a match slides round the centre, turning 1/7 rad per metre.
+  const sensor::PointCloud2d cloud =
+      LoopClosureCloud(test_world::RingCorridorWalls(6.0, 8.0), test_world::RingPose(7.0, 0.3));
+  ASSERT_GE(cloud.size(), 100u);
+  const ScanInformation2D info = ComputeScanInformation2D(cloud);
+  EXPECT_LT(info.TranslationRatio(), 0.01);
+  // Along the ring is the scan's x axis; forward round it (anticlockwise) turns left.
+  EXPECT_GT(std::abs(info.weakest_direction.x()), 0.99);
+  const double forward_turn_rad_per_m =
+      info.weakest_direction.x() > 0.0 ? info.weakest_turn_rad_per_m : -info.weakest_turn_rad_per_m;
+  EXPECT_NEAR(forward_turn_rad_per_m, 1.0 / 7.0, 0.01);
 }
 
 TEST(ScanInformation2DTest, ARoomHoldsAMatchEveryWay) {

@@ -201,6 +201,38 @@ TEST(LoopClosureMatcher2DTest, ACorridorMatchHoldsTheNodeAcrossTheCorridorOnly) 
             common::DegToRad(0.5));
 }
 
+TEST(LoopClosureMatcher2DTest, ARingCorridorMatchTurnsAsItSlidesRoundTheRing) {
+  // A ring corridor between radii 6 and 8 m: scans on the 7 m circle 0.21 m apart. Sliding a
+  // match round the ring turns it, so a slide back to the estimate that kept the match's
+  // heading would measure a heading off by the angle slid (here 4.1 degrees).
+  const std::vector<Segment> ring = test_world::RingCorridorWalls(6.0, 8.0);
+  const auto submap =
+      BuildFinishedSubmap(ring, [](int i) { return test_world::RingPose(7.0, 0.2 + 0.03 * i); });
+  ASSERT_TRUE(submap->finished());
+  const common::Rigid2d T_world_node = test_world::RingPose(7.0, 0.45);
+  // 0.5 m further round the ring, 0.1 m out from the centre.
+  const double estimate_angle_rad = 0.45 + 0.5 / 7.0;
+  const common::Rigid2d estimate =
+      submap->T_local_submap().inverse() * test_world::RingPose(7.1, estimate_angle_rad);
+  const ConstraintBuilderOptions2D defaults;
+  double score = 0.0;
+  const auto held = LoopClosureMatcher2D(submap, defaults)
+                        .Match(estimate, LoopClosureCloud(SimulateRangeData(ring, T_world_node)),
+                               defaults.fast_correlative_scan_matcher.min_score, &score);
+  ASSERT_TRUE(held.has_value());
+  // It measures nothing round the ring (the node's x axis), turning 1/7 rad a metre forward...
+  EXPECT_GT(std::abs(held->unmeasured_direction.x()), 0.99);
+  EXPECT_NEAR(held->unmeasured_turn_rad_per_m * held->unmeasured_direction.x(), 1.0 / 7.0, 0.02);
+  // ... keeps the estimate round the ring, with the heading the ring has there, and measures
+  // the distance from the centre.
+  const common::Rigid2d expected =
+      submap->T_local_submap().inverse() * test_world::RingPose(7.0, estimate_angle_rad);
+  EXPECT_LT((held->T_submap_node.translation() - expected.translation()).norm(), 0.05);
+  EXPECT_LT(
+      std::abs(common::NormalizeAngle(held->T_submap_node.angle_rad() - expected.angle_rad())),
+      common::DegToRad(0.5));
+}
+
 TEST(LoopClosureMatcher2DTest, EmptyCloudIsRejected) {
   const auto submap = BuildFinishedSubmap();
   const ConstraintBuilderOptions2D options;

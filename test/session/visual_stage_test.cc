@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -89,9 +90,12 @@ class VisualRun {
 
   // The true pose of `node` in submap 0 (local SLAM barely drifted while it was built).
   common::Rigid2d TrueSubmap0Node(int node) const { return drive_.TrueInFirstSubmap(node); }
-  // A laser loop as the search would have found it.
-  int AddLaserLoop(int node, int submap, const common::Rigid2d& T_submap_node) {
+  // A laser loop as the search would have found it; held across a corridor only when
+  // unmeasured_direction is not zero.
+  int AddLaserLoop(int node, int submap, const common::Rigid2d& T_submap_node,
+                   const Eigen::Vector2d& unmeasured_direction = Eigen::Vector2d::Zero()) {
     pose_graph::ExternalLoopConstraint2D c;
+    c.unmeasured_direction = unmeasured_direction;
     c.node = node;
     c.submap = submap;
     c.T_submap_node = T_submap_node;
@@ -222,6 +226,47 @@ TEST(VisualStageTest, ForcedConfirmedOverriddenAndRejectedThroughThePoseGraph) {
   EXPECT_EQ(after.confirmed, 1);
   EXPECT_EQ(after.overridden, 1);
   EXPECT_EQ(after.rejected, 1);
+}
+
+// A laser loop held across a corridor only keeps the graph's estimate along it; once the camera
+// confirms it, its measurement of the same place joins the graph and says where along it is.
+TEST(VisualStageTest, AConfirmedLoopHeldAcrossOnlyGetsTheCamerasMeasurementAlongIt) {
+  VisualRun run;
+  run.Drive(kLoopNodes);
+  const int last = kLoopNodes - 1;
+  // Visual loops the drive forced by appearance alone.
+  std::set<int> forced_before;
+  for (const auto& c : run.graph().LoopConstraints()) forced_before.insert(c.loop_id);
+  // 0.2 m off along the node's x axis, which the laser did not measure.
+  const common::Rigid2d slid = run.TrueSubmap0Node(last) * common::Rigid2d({0.2, 0.0}, 0.0);
+  const int held = run.AddLaserLoop(last, 0, slid, Eigen::Vector2d::UnitX());
+  const int full = run.AddLaserLoop(last - 2, 0, run.TrueSubmap0Node(last - 2));
+  ASSERT_GE(held, 0);
+  ASSERT_GE(full, 0);
+  run.stage().Finish();
+  const VisualStageStats stats = run.stage().stats();
+  std::printf("%s\n", VisualSummaryLine(stats).c_str());
+  ASSERT_NE(run.RecordOf(last), nullptr);
+  ASSERT_NE(run.RecordOf(last - 2), nullptr);
+  EXPECT_EQ(run.RecordOf(last)->decision, LoopDecision::kLaserConfirmed)
+      << run.RecordOf(last)->reason;
+  EXPECT_EQ(run.RecordOf(last - 2)->decision, LoopDecision::kLaserConfirmed);
+  EXPECT_EQ(stats.confirmed_along, 1);  // the one measured every way needs nothing more
+  std::vector<pose_graph::Constraint2D> added;
+  for (const auto& c : run.graph().LoopConstraints()) {
+    if (c.node == last && c.submap == 0 && forced_before.count(c.loop_id) == 0) added.push_back(c);
+  }
+  ASSERT_EQ(added.size(), 2u);
+  for (const pose_graph::Constraint2D& c : added) {
+    if (c.loop_id == held) {
+      EXPECT_EQ(c.source, pose_graph::Constraint2D::kBoth);
+      EXPECT_EQ(c.unmeasured_direction, Eigen::Vector2d::UnitX());
+    } else {
+      EXPECT_EQ(c.source, pose_graph::Constraint2D::kVisual);
+      EXPECT_TRUE(c.unmeasured_direction.isZero());
+      EXPECT_LT(DistanceM(c.T_submap_node, run.TrueSubmap0Node(last)), 0.12);
+    }
+  }
 }
 
 // Each keyframe's motion from the one before, as the camera measured it, joins the graph.

@@ -31,8 +31,10 @@ struct LoopRecord {
   int visual_inliers = 0;
   std::string decision;
   common::Rigid2d T_submap_node;
-  // Node frame; zero when the loop measured every way (loops.tsv unmeasured_x, unmeasured_y).
+  // Node frame; zero when the loop measured every way (loops.tsv unmeasured_x, unmeasured_y),
+  // and the turn per metre along it that it did not measure either (unmeasured_turn_rad_per_m).
   Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
+  double unmeasured_turn_rad_per_m = 0.0;
 };
 
 // Where a submap's frame is: its final map pose and the node whose insertion started it

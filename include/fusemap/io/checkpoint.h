@@ -21,7 +21,7 @@ const char* FusemapVersion();
 //   payload: fusemap version string, options YAML text, MapBuilderState2D
 //            (see map_builder_state_codec.h; grids optionally zlib-compressed), the odometry
 //            record, the trajectory archive's mark.
-constexpr uint32_t kCheckpointFormatVersion = 8;
+constexpr uint32_t kCheckpointFormatVersion = 9;
 
 struct CheckpointContents {
   std::string fusemap_version = FusemapVersion();

@@ -83,8 +83,9 @@ struct LoopClosure2D {
   common::Rigid2d T_submap_node;
   double laser_score = 0.0;
   // Constraint2D::unmeasured_direction: zero unless the scan held the match across a
-  // corridor only.
+  // corridor only; Constraint2D::unmeasured_turn_rad_per_m with it.
   Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
+  double unmeasured_turn_rad_per_m = 0.0;
 };
 
 // A loop constraint measured outside the graph (the visual loop checker): node in submap,
@@ -97,6 +98,10 @@ struct ExternalLoopConstraint2D {
   double rotation_weight = 1.0;
   Constraint2D::Source source = Constraint2D::kVisual;
   double laser_score = 0.0;  // with source kLaser
+  // With source kLaser, what the match did not measure (Constraint2D::unmeasured_direction,
+  // unmeasured_turn_rad_per_m); a visual loop measures every way.
+  Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
+  double unmeasured_turn_rad_per_m = 0.0;
 };
 
 // A relative pose between two nodes measured outside the graph: the camera's motion between

@@ -40,6 +40,10 @@ struct Constraint2D {
   // walls, mapping::ScanInformation2D): the unit vector, in the node's frame, along which it
   // measures nothing. Zero when it measures every way.
   Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
+  // With it, the turn in rad per metre along unmeasured_direction that it does not measure
+  // either (ScanInformation2D::weakest_turn_rad_per_m): a match that slides round a curved wall
+  // turns with it, so sliding alone would leave a wrong heading measured.
+  double unmeasured_turn_rad_per_m = 0.0;
 };
 
 // Odometry or local-SLAM relative motion between two nodes (usually consecutive ones).

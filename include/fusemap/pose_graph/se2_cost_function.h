@@ -28,16 +28,24 @@ bool SqrtInformation(const Eigen::Matrix3d& information, Eigen::Matrix3d* sqrt_i
 
 // The diagonal information of Cartographer-style weights: residual = weights .* e.
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight);
-// The same, but with (almost) no translation information along `unmeasured_direction` (a unit
-// vector in the measurement's frame; zero: none unmeasured). A 1e-6 fraction of it is kept so
-// that the information stays positive definite for SqrtInformation.
-Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
-                                       const Eigen::Vector2d& unmeasured_direction);
+// The same, but with (almost) no information along one mode of the error: a translation along
+// `unmeasured_direction` (a unit vector in the measurement's frame; zero: none unmeasured) with
+// `turn_rad_per_m` of rotation per metre of it (a match that slides round a curved wall). A
+// 1e-6 fraction of it is kept so that the information stays positive definite for
+// SqrtInformation.
+Eigen::Matrix3d InformationWithoutMode(double translation_weight, double rotation_weight,
+                                       const Eigen::Vector2d& unmeasured_direction,
+                                       double turn_rad_per_m);
 // The same with `weight_fraction` of translation_weight along `weak_direction` (a unit vector in
 // the measurement's frame; zero: full weight every way), in (0, 1].
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& weak_direction,
                                        double weight_fraction);
+// `information` with `weight_fraction` of its weight (its square root) left along `mode`, an
+// error vector [x, y, angle] (not zero), and unchanged on what is orthogonal to it in the
+// information's metric: e^T result e = f^2 e^T information e for e along mode.
+Eigen::Matrix3d WeakenMode(const Eigen::Matrix3d& information, const Eigen::Vector3d& mode,
+                           double weight_fraction);
 
 // The unwhitened error e above, for reporting and tests.
 Eigen::Vector3d Se2EdgeError(const common::Rigid2d& T_map_from, const common::Rigid2d& T_map_to,

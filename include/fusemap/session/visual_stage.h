@@ -38,6 +38,8 @@ struct VisualStageStats {
   int64_t frames_unusable = 0;          // no colour image
   int laser_loops_checked = 0;          // laser loops arbitrated
   int confirmed = 0;                    // laser_confirmed
+  // Of those, held across a corridor only, with the camera's measurement added along it.
+  int confirmed_along = 0;
   int overridden = 0;                   // visual_override
   int forced = 0;                       // visual_forced
   int kept = 0;                         // laser_kept
@@ -50,10 +52,9 @@ struct VisualStageStats {
 };
 
 // "visual_loop: keyframes=… candidates=… verified=… refused=… laser_loops_checked=…
-// laser_confirmed=… visual_override=… visual_forced=… laser_kept=… laser_rejected=…
-// visual_rejected=… motion_links=… motion_links_refused=… frames_in=… frames_offered=…
-// frames_dropped=…" (no newline):
-// fusemap_offline's line.
+// laser_confirmed=… confirmed_along=… visual_override=… visual_forced=… laser_kept=…
+// laser_rejected=… visual_rejected=… motion_links=… motion_links_refused=… frames_in=…
+// frames_offered=… frames_dropped=…" (no newline): fusemap_offline's line.
 std::string VisualSummaryLine(const VisualStageStats& stats);
 
 // The visual half of loop closure (issue 17): the ORB visual loop checker fed with camera

@@ -22,6 +22,8 @@ struct LoopMeasurement2D {
   // (a corridor of plain walls; pose_graph::Constraint2D::unmeasured_direction). There the
   // translation is the graph's estimate, not a measurement. Zero when it measures every way.
   Eigen::Vector2d unmeasured_direction = Eigen::Vector2d::Zero();
+  // The turn, in rad per metre along unmeasured_direction, that goes with it (a curved wall).
+  double unmeasured_turn_rad_per_m = 0.0;
 };
 
 // What the camera said about a place the laser closed on.
