@@ -170,7 +170,7 @@ void ParseWorld(const YAML::Node& root, Parser* p, World* world) {
     Prism prism;
     prism.shape = Prism::Shape::kCircle;
     prism.centre_m = p->Point(pillar, "centre");
-    prism.radius_m = p->Number(pillar, "radius_m", 0.3, 0.01, 10.0);
+    prism.radius_m = p->Number(pillar, "radius_m", 0.3, 0.01, 100.0);
     prism.z_max_m = p->Number(pillar, "height_m", world->ceiling_height_m, 0.01, 50.0);
     prism.side_textures.fill(p->TextureRef(pillar, "texture"));
     prism.top_texture = prism.side_textures[0];

@@ -2,9 +2,12 @@
 // hard for the laser and fair for the camera must stay true when they are edited.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
+#include "fusemap/sim/ray_cast_2d.h"
 #include "fusemap/sim/rgbd_renderer.h"
 #include "fusemap/sim/simulation.h"
 #include "fusemap/sim/world_loader.h"
@@ -80,7 +83,36 @@ TEST_P(VisualWorldTest, CameraSeesPostersWithinDepthRange) {
   EXPECT_GT(wall_pixels_with_depth, 60 * 160 / 2);  // most of it closer than depth_max_m
 }
 
-INSTANTIATE_TEST_SUITE_P(Worlds, VisualWorldTest, ::testing::Values("corridor.yaml", "rooms.yaml"));
+INSTANTIATE_TEST_SUITE_P(Worlds, VisualWorldTest,
+                         ::testing::Values("corridor.yaml", "rooms.yaml", "ring.yaml"));
+
+// The ring corridor is the one where the laser cannot tell where along the loop it is: the
+// same bearings from two points of the robot's circle, a quarter of the ring apart, give the
+// same ranges (the outer wall's polygon shows by less than the laser's noise).
+TEST(RingWorldTest, EveryPointOfTheLoopLooksTheSameToTheLaser) {
+  const World world = Load("ring.yaml");
+  const double radius_m = world.robot.waypoints_m.front().norm();
+  ASSERT_GT(radius_m, 10.0);
+  double max_difference_m = 0.0;
+  int hits = 0;
+  for (int i = 0; i < 360; ++i) {
+    const double bearing_rad = 2.0 * M_PI * i / 360.0;
+    double range_m[2];
+    for (int k = 0; k < 2; ++k) {
+      const double at_rad = 0.3 + k * 0.5 * M_PI;
+      const Eigen::Vector2d origin(radius_m * std::cos(at_rad), radius_m * std::sin(at_rad));
+      const double heading_rad = at_rad + 0.5 * M_PI + bearing_rad;
+      int hit = -1;
+      range_m[k] =
+          CastRay2d(world.prisms, origin,
+                    Eigen::Vector2d(std::cos(heading_rad), std::sin(heading_rad)), 0.3, 30.0, &hit);
+      if (k == 0 && hit >= 0) ++hits;
+    }
+    max_difference_m = std::max(max_difference_m, std::abs(range_m[0] - range_m[1]));
+  }
+  EXPECT_EQ(hits, 360);
+  EXPECT_LT(max_difference_m, 0.01);
+}
 
 }  // namespace
 }  // namespace sim
