@@ -91,23 +91,33 @@ Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotatio
       .asDiagonal();
 }
 
+namespace {
+
+// The weights' information with weight_fraction of it along a translation of
+// `direction` (zero: none weakened) turning turn_rad_per_m with it.
+Eigen::Matrix3d WeakAlong(double translation_weight, double rotation_weight,
+                          const Eigen::Vector2d& direction, double turn_rad_per_m,
+                          double weight_fraction) {
+  const Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
+  if (direction.isZero()) return information;
+  const Eigen::Vector2d d = direction.normalized();
+  return WeakenMode(information, Eigen::Vector3d(d.x(), d.y(), turn_rad_per_m), weight_fraction);
+}
+
+}  // namespace
+
 Eigen::Matrix3d InformationWithoutMode(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& unmeasured_direction,
                                        double turn_rad_per_m) {
-  const Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
-  if (unmeasured_direction.isZero()) return information;
-  const Eigen::Vector2d d = unmeasured_direction.normalized();
   // 1e-6 of the information is 1e-3 of the weight.
-  return WeakenMode(information, Eigen::Vector3d(d.x(), d.y(), turn_rad_per_m), 1e-3);
+  return WeakAlong(translation_weight, rotation_weight, unmeasured_direction, turn_rad_per_m,
+                   1e-3);
 }
 
 Eigen::Matrix3d InformationFromWeights(double translation_weight, double rotation_weight,
                                        const Eigen::Vector2d& weak_direction,
                                        double weight_fraction) {
-  const Eigen::Matrix3d information = InformationFromWeights(translation_weight, rotation_weight);
-  if (weak_direction.isZero()) return information;
-  const Eigen::Vector2d d = weak_direction.normalized();
-  return WeakenMode(information, Eigen::Vector3d(d.x(), d.y(), 0.0), weight_fraction);
+  return WeakAlong(translation_weight, rotation_weight, weak_direction, 0.0, weight_fraction);
 }
 
 Eigen::Matrix3d WeakenMode(const Eigen::Matrix3d& information, const Eigen::Vector3d& mode,
