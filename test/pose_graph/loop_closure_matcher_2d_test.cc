@@ -24,12 +24,7 @@ using test_world::SimulateRangeData;
 // A round room (24-gon of radius 3 m around the origin): nothing like the rectangular one.
 std::vector<Segment> RoundRoom() {
   std::vector<Segment> walls;
-  for (int i = 0; i < 24; ++i) {
-    const double a0 = 2.0 * common::kPi * i / 24.0;
-    const double a1 = 2.0 * common::kPi * (i + 1) / 24.0;
-    walls.push_back({{3.0 * std::cos(a0), 3.0 * std::sin(a0)},
-                     {3.0 * std::cos(a1), 3.0 * std::sin(a1)}});
-  }
+  test_world::AddCircle(3.0, 24, &walls);
   return walls;
 }
 

@@ -97,18 +97,21 @@ inline common::Rigid2d ArcPose(int i, double step_m) {
                          theta);
 }
 
+// A circular wall round the origin as a regular polygon of `sides` segments, appended to walls.
+inline void AddCircle(double radius_m, int sides, std::vector<Segment>* walls) {
+  for (int i = 0; i < sides; ++i) {
+    const double a0 = 2.0 * common::kPi * i / sides, a1 = 2.0 * common::kPi * (i + 1) / sides;
+    walls->push_back({Eigen::Vector2d(radius_m * std::cos(a0), radius_m * std::sin(a0)),
+                      Eigen::Vector2d(radius_m * std::cos(a1), radius_m * std::sin(a1))});
+  }
+}
+
 // A ring corridor round the origin between radii inner_m and outer_m, each wall a 180-gon
 // (sagitta under 1 mm at 8 m): its plain curved walls look the same from every point of it.
 inline std::vector<Segment> RingCorridorWalls(double inner_m, double outer_m) {
   std::vector<Segment> walls;
-  constexpr int kSides = 180;
-  for (const double r : {inner_m, outer_m}) {
-    for (int i = 0; i < kSides; ++i) {
-      const double a0 = 2.0 * M_PI * i / kSides, a1 = 2.0 * M_PI * (i + 1) / kSides;
-      walls.push_back({Eigen::Vector2d(r * std::cos(a0), r * std::sin(a0)),
-                       Eigen::Vector2d(r * std::cos(a1), r * std::sin(a1))});
-    }
-  }
+  AddCircle(inner_m, 180, &walls);
+  AddCircle(outer_m, 180, &walls);
   return walls;
 }
 
@@ -116,7 +119,7 @@ inline std::vector<Segment> RingCorridorWalls(double inner_m, double outer_m) {
 // anticlockwise.
 inline common::Rigid2d RingPose(double radius_m, double angle_rad) {
   return common::Rigid2d(radius_m * std::cos(angle_rad), radius_m * std::sin(angle_rad),
-                         angle_rad + 0.5 * M_PI);
+                         angle_rad + 0.5 * common::kPi);
 }
 
 }  // namespace test_world
