@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <cmath>
 
 #include <opencv2/imgproc.hpp>
 
@@ -72,7 +73,26 @@ OrbFeatures OrbExtractor::Extract(const cv::Mat& gray) const {
   for (int index : kept) features.keypoints.push_back(detected[index]);
   orb_->compute(gray, features.keypoints, features.descriptors);
   if (features.descriptors.empty()) features.descriptors = cv::Mat(0, 32, CV_8UC1);
+  ToImagePixelCentres(gray.size(), &features.keypoints);
   return features;
+}
+
+void OrbExtractor::ToImagePixelCentres(const cv::Size& image_size,
+                                       std::vector<cv::KeyPoint>* keypoints) const {
+  for (cv::KeyPoint& k : *keypoints) {
+    if (k.octave <= 0) continue;
+    // OpenCV resizes level L to round(size / scale^L) pixels (pixel centres aligned, as every
+    // resize does) and reports a corner found at (x, y) there as (x, y) * scale^L: scale^L as
+    // OpenCV computes it, in float.
+    const float scale = static_cast<float>(
+        std::pow(static_cast<double>(options_.scale_factor), static_cast<double>(k.octave)));
+    const float level_x = k.pt.x / scale;
+    const float level_y = k.pt.y / scale;
+    const int level_width = cvRound(image_size.width / scale);
+    const int level_height = cvRound(image_size.height / scale);
+    k.pt.x = (level_x + 0.5f) * image_size.width / level_width - 0.5f;
+    k.pt.y = (level_y + 0.5f) * image_size.height / level_height - 0.5f;
+  }
 }
 
 cv::Mat ToGray(const cv::Mat& image) {

@@ -2,6 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
+
 #include "fusemap/visual_loop/keyframe.h"
 #include "visual_loop/synthetic_views.h"
 
@@ -29,7 +34,9 @@ TEST(OrbExtractorTest, KeepsTheBudgetSpreadOverTheGrid) {
       const int count = per_cell[row * options.grid_cols + col];
       occupied += count > 0 ? 1 : 0;
       const bool inner = row > 0 && col > 0 && row + 1 < options.grid_rows && col + 1 < options.grid_cols;
-      if (inner) EXPECT_GE(count, 10) << row << "," << col;
+      if (inner) {
+        EXPECT_GE(count, 10) << row << "," << col;
+      }
     }
   }
   EXPECT_GE(occupied, 44);
@@ -40,6 +47,51 @@ TEST(OrbExtractorTest, TexturelessImageGivesNoFeatures) {
   const OrbFeatures features = OrbExtractor(OrbOptions{}).Extract(blank);
   EXPECT_TRUE(features.keypoints.empty());
   EXPECT_EQ(features.descriptors.cols, 32);
+}
+
+TEST(OrbExtractorTest, CoarseLevelKeypointsSitOnTheirCornersNotUpAndLeftOfThem) {
+  // A corner found in an image and in the image turned half round is the same corner: mapped
+  // back, the two positions agree on average unless the extractor shifts every keypoint of a
+  // level one way (OpenCV's own coordinates put level 2's ~0.5 px up-left, level 6's ~1.5 px).
+  const cv::Mat image = testing::RandomTexture(640, 480, 5);
+  cv::Mat turned;
+  cv::rotate(image, turned, cv::ROTATE_180);
+  const OrbOptions options;
+  const OrbExtractor extractor(options);
+  const OrbFeatures found = extractor.Extract(image);
+  const OrbFeatures found_turned = extractor.Extract(turned);
+  int levels_checked = 0;
+  for (int level = 2; level < options.num_levels; ++level) {
+    const double scale = std::pow(options.scale_factor, level);
+    Eigen::Vector2d offset_sum = Eigen::Vector2d::Zero();
+    int pairs = 0;
+    for (const cv::KeyPoint& k : found.keypoints) {
+      if (k.octave != level) continue;
+      const cv::KeyPoint* nearest = nullptr;
+      double nearest_distance = 2.0 * scale;
+      Eigen::Vector2d nearest_offset;
+      for (const cv::KeyPoint& t : found_turned.keypoints) {
+        if (t.octave != level) continue;
+        const Eigen::Vector2d offset(k.pt.x - (image.cols - 1 - t.pt.x),
+                                     k.pt.y - (image.rows - 1 - t.pt.y));
+        if (offset.norm() < nearest_distance) {
+          nearest = &t;
+          nearest_distance = offset.norm();
+          nearest_offset = offset;
+        }
+      }
+      if (nearest == nullptr) continue;
+      offset_sum += nearest_offset;
+      ++pairs;
+    }
+    if (pairs < 20) continue;
+    ++levels_checked;
+    // Twice the shift of one keypoint (each of the pair is shifted, in opposite directions).
+    const Eigen::Vector2d mean_offset = offset_sum / pairs;
+    EXPECT_LT(std::abs(mean_offset.x()), 0.2) << "level " << level << ", " << pairs << " pairs";
+    EXPECT_LT(std::abs(mean_offset.y()), 0.2) << "level " << level << ", " << pairs << " pairs";
+  }
+  EXPECT_GE(levels_checked, 4);
 }
 
 TEST(OrbExtractorTest, KeyframeBackProjectsDepthAndStaysCompact) {
