@@ -85,6 +85,8 @@ struct ArbitrationRules {
     c->Require(o.max_forced_correction_rad > 0.0, "max_forced_correction_rad", "must be > 0");
     c->Require(o.forced_correction_rad_per_m >= 0.0, "forced_correction_rad_per_m",
                "must be >= 0");
+    c->Require(o.max_laser_explained_fraction >= 0.0 && o.max_laser_explained_fraction <= 1.0,
+               "max_laser_explained_fraction", "must be in [0, 1]");
   }
 };
 
@@ -190,6 +192,7 @@ VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader) {
   arbitration.Get("max_forced_correction_rad", &config.arbitration.max_forced_correction_rad);
   arbitration.Get("forced_correction_rad_per_m",
                   &config.arbitration.forced_correction_rad_per_m);
+  arbitration.Get("max_laser_explained_fraction", &config.arbitration.max_laser_explained_fraction);
   arbitration.CheckOptions(ArbitrationRules{config.arbitration});
 
   common::ConfigReader& motion_links = reader.Child("motion_links");

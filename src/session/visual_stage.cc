@@ -269,12 +269,23 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
     if (!laser || std::abs(c.node - query_node) < std::abs(laser->node - query_node)) laser = c;
   }
   const int node = laser ? laser->node : query_node;
-  const std::optional<visual_loop::LoopMeasurement2D> visual =
+  std::optional<visual_loop::LoopMeasurement2D> visual =
       ForNode(base_measurement, loop.query_keyframe, submap, node);
   if (!visual) return;
+  const std::optional<common::Rigid2d> T_submap_node = graph_->T_submap_node(submap, node);
   std::optional<visual_loop::LoopMeasurement2D> laser_measurement;
   if (laser) {
     laser_measurement = LaserMeasurement(*laser);
+    // Where the laser puts the query keyframe's base relative to the match keyframe's.
+    const std::optional<common::Rigid2d> T_submap_query_base =
+        T_submap_base(submap, loop.query_keyframe);
+    if (T_submap_query_base && T_submap_node) {
+      const common::Rigid2d T_match_query_laser = T_submap_match_base->inverse() *
+                                                  laser->T_submap_node * T_submap_node->inverse() *
+                                                  *T_submap_query_base;
+      visual->visual_matches_explained_by_laser =
+          checker_.MatchesExplained(loop.match_keyframe, loop.query_keyframe, T_match_query_laser);
+    }
     const int id = laser->loop_id;
     laser_loops_.erase(std::remove_if(laser_loops_.begin(), laser_loops_.end(),
                                       [id](const pose_graph::LoopClosure2D& l) { return l.id == id; }),
@@ -283,7 +294,6 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
   // Without a laser loop, the correction it asks of the graph must be one drift explains.
   std::optional<visual_loop::GraphEstimate2D> estimate;
   const auto match = keyframes_.find(loop.match_keyframe);
-  const std::optional<common::Rigid2d> T_submap_node = graph_->T_submap_node(submap, node);
   if (!laser && T_submap_node && match != keyframes_.end()) {
     estimate = visual_loop::GraphEstimate2D{*T_submap_node, PathLengthM(match->second.node, node)};
   }
@@ -367,7 +377,11 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
         visual = ForNode(visual_loop::ToSubmapMeasurement(*T_submap_base(loop.submap, view.id),
                                                           *result.constraint),
                          query, loop.submap, loop.node);
-        if (visual) break;
+        if (visual) {
+          visual->visual_matches_explained_by_laser =
+              checker_.MatchesExplained(view.id, query, view.expected);
+          break;
+        }
       }
       contradicted += result.check == visual_loop::VisualCheck::kContradicted;
     }

@@ -185,6 +185,12 @@ void VerifyEpipolar(const Keyframe& a, const Keyframe& b, const std::vector<cv::
   result->verified = true;
 }
 
+std::vector<cv::DMatch> MatchKeyframes(const Keyframe& a, const Keyframe& b,
+                                       const VerificationOptions& options) {
+  return MatchDescriptors(a.descriptors, b.descriptors, options.matching, &a.vocabulary_nodes,
+                          &b.vocabulary_nodes);
+}
+
 }  // namespace
 
 bool VerificationOptions::IsValid(std::string* error) const {
@@ -216,8 +222,7 @@ const char* ToString(VerificationMethod method) {
 VerificationResult VerifyKeyframes(const Keyframe& a, const Keyframe& b,
                                    const VerificationOptions& options) {
   VerificationResult result;
-  const std::vector<cv::DMatch> matches =
-      MatchDescriptors(a.descriptors, b.descriptors, options.matching, &a.vocabulary_nodes, &b.vocabulary_nodes);
+  const std::vector<cv::DMatch> matches = MatchKeyframes(a, b, options);
   result.matches = static_cast<int>(matches.size());
   if (a.has_depth() && HasIntrinsics(b)) {
     VerifyPnp(a, b, matches, options, &result);
@@ -225,6 +230,23 @@ VerificationResult VerifyKeyframes(const Keyframe& a, const Keyframe& b,
     VerifyEpipolar(a, b, matches, options, &result);
   }
   return result;
+}
+
+int CountMatchesExplained(const Keyframe& a, const Keyframe& b, const common::Rigid3d& T_a_b,
+                          const VerificationOptions& options) {
+  if (!a.has_depth() || !HasIntrinsics(b)) return 0;
+  const common::Rigid3d T_b_a = T_a_b.inverse();
+  int explained = 0;
+  for (const cv::DMatch& m : MatchKeyframes(a, b, options)) {
+    const Eigen::Vector3f& p_a = a.points_camera[m.queryIdx];
+    if (!std::isfinite(p_a.z())) continue;
+    const Eigen::Vector3d p_b = T_b_a * p_a.cast<double>();
+    if (!(p_b.z() > 0.0)) continue;
+    const cv::Point2f& pixel = b.keypoints[m.trainIdx];
+    explained += (Project(b.intrinsics, p_b) - Eigen::Vector2d(pixel.x, pixel.y)).norm() <=
+                 options.pnp_threshold_px;
+  }
+  return explained;
 }
 
 }  // namespace visual_loop

@@ -12,6 +12,10 @@ bool ArbitrationOptions::IsValid(std::string* error) const {
     *error = "arbitration: disagreement thresholds must be positive";
     return false;
   }
+  if (!(max_laser_explained_fraction >= 0.0 && max_laser_explained_fraction <= 1.0)) {
+    *error = "arbitration: max_laser_explained_fraction must be in [0, 1]";
+    return false;
+  }
   if (!(max_forced_correction_m > 0.0) || !(forced_correction_per_m >= 0.0) ||
       !(max_forced_correction_rad > 0.0) || !(forced_correction_rad_per_m >= 0.0)) {
     *error = "arbitration: forced correction bounds must be positive (their per-metre rates >= 0)";
@@ -70,10 +74,22 @@ ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMe
                   record.translation_disagreement_m, record.rotation_disagreement_rad * 180.0 / M_PI);
     const bool agree = record.translation_disagreement_m <= options.max_translation_disagreement_m &&
                        record.rotation_disagreement_rad <= options.max_rotation_disagreement_rad;
+    const bool laser_explains_as_well =
+        visual->visual_matches_explained_by_laser >= 0 &&
+        visual->visual_matches_explained_by_laser >
+            options.max_laser_explained_fraction * visual->visual_inliers;
     if (agree) {
       record.decision = LoopDecision::kLaserConfirmed;
       record.chosen = laser;
       record.reason = std::string("laser and visual agree (") + numbers + "): laser kept";
+    } else if (laser_explains_as_well) {
+      record.decision = LoopDecision::kLaserKept;
+      record.chosen = laser;
+      record.reason = std::string("laser and visual disagree (") + numbers +
+                      "), but the laser's pose explains " +
+                      std::to_string(visual->visual_matches_explained_by_laser) +
+                      " of the camera's matches against its own " +
+                      std::to_string(visual->visual_inliers) + ": laser kept";
     } else {
       record.decision = LoopDecision::kVisualOverride;
       record.chosen = visual;

@@ -120,6 +120,18 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
   return out;
 }
 
+int VisualLoopChecker::MatchesExplained(int match_keyframe, int query_keyframe,
+                                        const common::Rigid2d& T_match_base_query_base) const {
+  const Keyframe* query = detector_.Find(query_keyframe);
+  const Keyframe* match = detector_.Find(match_keyframe);
+  if (query == nullptr || match == nullptr) return -1;
+  const common::Rigid3d T_match_camera_query_camera =
+      T_base_camera_.at(match_keyframe).inverse() *
+      common::Rigid3d::FromRigid2d(T_match_base_query_base) * T_base_camera_.at(query_keyframe);
+  return CountMatchesExplained(*match, *query, T_match_camera_query_camera,
+                               options_.detector.verification);
+}
+
 std::vector<int> VisualLoopChecker::KeyframesOfSubmap(int submap) const {
   std::vector<int> ids;
   for (const auto& entry : T_base_camera_) {

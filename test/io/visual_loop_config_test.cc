@@ -37,7 +37,8 @@ TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
                     "  keyframes: {min_translation_m: 0.5, max_features: 800}\n"
                     "  recognition: {temporal_consistency: 1}\n"
                     "  verification: {min_inliers: 40}\n"
-                    "  arbitration: {max_translation_disagreement_m: 0.2}\n"
+                    "  arbitration: {max_translation_disagreement_m: 0.2,\n"
+                    "                max_laser_explained_fraction: 0.7}\n"
                     "  motion_links: {enabled: false, translation_weight: 5e4,\n"
                     "                 max_disagreement_m: 0.1}\n",
                     &config, &error))
@@ -51,6 +52,7 @@ TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
   EXPECT_EQ(v.checker.detector.recognition.temporal_consistency, 1);
   EXPECT_EQ(v.checker.detector.verification.min_inliers, 40);
   EXPECT_EQ(v.arbitration.max_translation_disagreement_m, 0.2);
+  EXPECT_EQ(v.arbitration.max_laser_explained_fraction, 0.7);
   EXPECT_FALSE(v.motion_links.enabled);
   EXPECT_EQ(v.motion_links.translation_weight, 5e4);
   EXPECT_EQ(v.motion_links.max_disagreement_m, 0.1);
@@ -69,6 +71,11 @@ TEST(VisualLoopConfigTest, BadValuesAreRefusedWithKeyPathAndLine) {
                      &config, &error));
   EXPECT_NE(error.find("visual_loop.verification.min_inliers"), std::string::npos) << error;
   EXPECT_NE(error.find("test.yaml:4"), std::string::npos) << error;
+
+  EXPECT_FALSE(Parse("visual_loop:\n  arbitration: {max_laser_explained_fraction: 1.5}\n",
+                     &config, &error));
+  EXPECT_NE(error.find("visual_loop.arbitration.max_laser_explained_fraction"), std::string::npos)
+      << error;
 
   EXPECT_FALSE(Parse("visual_loop:\n  max_queue_frames: 0\n", &config, &error));
   EXPECT_NE(error.find("visual_loop.max_queue_frames"), std::string::npos) << error;

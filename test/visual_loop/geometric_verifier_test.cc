@@ -45,6 +45,25 @@ TEST(GeometricVerifierTest, PnpRecoversTheKnownTransform) {
   EXPECT_LT(std::sqrt(result.covariance(0, 0)), 0.005);
 }
 
+TEST(GeometricVerifierTest, CountsTheMatchesAPoseExplains) {
+  const common::Rigid3d T_a_b =
+      testing::PoseFromTranslationRpy(0.15, -0.05, 0.10, 0.03, -0.08, 0.05);
+  const Views views = MakeViews(T_a_b, true);
+  const VerificationOptions options;
+  const VerificationResult result = VerifyKeyframes(views.a, views.b, options);
+  ASSERT_TRUE(result.verified) << result.reason;
+  // The true pose explains what verification kept (within a few at the threshold's edge).
+  const int at_truth = CountMatchesExplained(views.a, views.b, T_a_b, options);
+  EXPECT_GE(at_truth, result.inliers - 5);
+  EXPECT_LE(at_truth, result.matches);
+  // 0.3 m sideways of it, almost none: 0.3 m at 2 m is ~80 px.
+  const common::Rigid3d sideways =
+      T_a_b * common::Rigid3d(Eigen::Vector3d(0.3, 0.0, 0.0), Eigen::Quaterniond::Identity());
+  EXPECT_LT(CountMatchesExplained(views.a, views.b, sideways, options), result.inliers / 10);
+  // Without depth in a there is nothing to project.
+  EXPECT_EQ(CountMatchesExplained(views.b, views.a, T_a_b.inverse(), options), 0);
+}
+
 TEST(GeometricVerifierTest, EssentialMatrixRecoversRotationAndDirectionWithoutDepth) {
   // Two planes (left half near, right half far): a plane alone is ambiguous for the essential
   // matrix (two valid decompositions).

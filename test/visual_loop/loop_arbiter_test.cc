@@ -102,6 +102,41 @@ TEST(LoopArbiterTest, AVisualLoopDriftCannotExplainIsNotForced) {
   EXPECT_EQ(long_way.decision, LoopDecision::kVisualForced);
 }
 
+TEST(LoopArbiterTest, AVisualPoseNoBetterThanTheLasersDoesNotReplaceIt) {
+  // The rooms world's east end, seen along a wall far off: the camera's pose said 0.39 m and
+  // 5.7 deg off the laser's with 45 inliers, and the laser's pose explained 50 of its matches.
+  const ArbitrationOptions options;
+  const LoopMeasurement2D laser = Measurement(2.0, 1.0, 0.5);
+  LoopMeasurement2D visual = Measurement(2.07, 0.61, 0.6);
+  visual.visual_inliers = 45;
+  visual.visual_matches_explained_by_laser = 50;
+  const ArbitrationRecord kept =
+      ArbitrateLoop(9, 2, laser, visual, VisualCheck::kVerified, options);
+  EXPECT_EQ(kept.decision, LoopDecision::kLaserKept);
+  EXPECT_EQ(kept.source, LoopSource::kBoth);
+  ASSERT_TRUE(kept.chosen.has_value());
+  EXPECT_EQ(kept.chosen->T_submap_node.translation(), laser.T_submap_node.translation());
+  EXPECT_TRUE(kept.visual.has_value());  // still recorded as evidence
+  EXPECT_NE(kept.reason.find("explains 50 of the camera's matches against its own 45"),
+            std::string::npos)
+      << kept.reason;
+
+  // Where the laser's pose explains few of them, the camera's replaces it.
+  visual.visual_matches_explained_by_laser = 22;  // not more than half of 45
+  EXPECT_EQ(ArbitrateLoop(9, 2, laser, visual, VisualCheck::kVerified, options).decision,
+            LoopDecision::kVisualOverride);
+  // Not counted: the thresholds alone decide, as before.
+  visual.visual_matches_explained_by_laser = -1;
+  EXPECT_EQ(ArbitrateLoop(9, 2, laser, visual, VisualCheck::kVerified, options).decision,
+            LoopDecision::kVisualOverride);
+  // Where they agree the count does not matter.
+  LoopMeasurement2D close = Measurement(2.05, 1.0, 0.51);
+  close.visual_inliers = 45;
+  close.visual_matches_explained_by_laser = 5;
+  EXPECT_EQ(ArbitrateLoop(9, 2, laser, close, VisualCheck::kVerified, options).decision,
+            LoopDecision::kLaserConfirmed);
+}
+
 }  // namespace
 }  // namespace visual_loop
 }  // namespace fusemap

@@ -58,6 +58,13 @@ struct VerificationResult {
 VerificationResult VerifyKeyframes(const Keyframe& a, const Keyframe& b,
                                    const VerificationOptions& options);
 
+// How many of the descriptor matches VerifyKeyframes finds between a and b a given pose of
+// camera b in camera a explains: those with depth in a that it projects within
+// options.pnp_threshold_px of their keypoint in b. 0 without depth in a or intrinsics in b.
+// A verified pose that another pose explains about as well is not evidence against that one.
+int CountMatchesExplained(const Keyframe& a, const Keyframe& b, const common::Rigid3d& T_a_b,
+                          const VerificationOptions& options);
+
 }  // namespace visual_loop
 }  // namespace fusemap
 

@@ -18,6 +18,10 @@ struct LoopMeasurement2D {
   Eigen::Matrix3d covariance = Eigen::Matrix3d::Identity();
   double laser_score = 0.0;  // laser only
   int visual_inliers = 0;    // visual only
+  // Visual only, when a laser loop of the same place is arbitrated against it: how many of the
+  // camera's descriptor matches the laser's relative pose explains (CountMatchesExplained);
+  // -1 when not counted.
+  int visual_matches_explained_by_laser = -1;
   // Laser only: the unit vector, in the node's frame, along which the match measured nothing
   // (a corridor of plain walls; pose_graph::Constraint2D::unmeasured_direction). There the
   // translation is the graph's estimate, not a measurement. Zero when it measures every way.
@@ -59,6 +63,11 @@ struct ArbitrationOptions {
   double forced_correction_per_m = 0.1;
   double max_forced_correction_rad = 0.35;
   double forced_correction_rad_per_m = 0.01;
+  // Where they disagree, the visual loop replaces the laser one only if the laser's pose
+  // explains at most this fraction as many of the camera's matches as the camera's own pose
+  // does: otherwise the images do not tell the two apart (a wall seen far off at a narrow
+  // angle fits a turn as well as a step sideways) and the laser loop is kept.
+  double max_laser_explained_fraction = 0.5;
   bool IsValid(std::string* error) const;
 };
 

@@ -104,6 +104,12 @@ class VisualLoopChecker {
   VisualCheckResult CheckPlace(int query_keyframe, int match_keyframe,
                                const common::Rigid2d& expected_T_match_base_query_base) const;
 
+  // How many of the descriptor matches between two stored keyframes the relative pose of their
+  // bases explains (CountMatchesExplained, through each keyframe's camera mount); -1 if either
+  // keyframe is gone.
+  int MatchesExplained(int match_keyframe, int query_keyframe,
+                       const common::Rigid2d& T_match_base_query_base) const;
+
   // Keyframes of a submap, and the keyframe whose node is nearest to `node` (-1 if none).
   std::vector<int> KeyframesOfSubmap(int submap) const;
   int KeyframeNearestNode(int node) const;
