@@ -279,7 +279,10 @@ void VisualStage::HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop
     // Where the laser puts the query keyframe's base relative to the match keyframe's.
     const std::optional<common::Rigid2d> T_submap_query_base =
         T_submap_base(submap, loop.query_keyframe);
-    if (T_submap_query_base && T_submap_node) {
+    // Counted only where the two disagree (a descriptor matching, ~1 ms): only there does the
+    // arbiter weigh them.
+    if (T_submap_query_base && T_submap_node &&
+        visual_loop::LaserAndVisualDisagree(*laser_measurement, *visual, config_.arbitration)) {
       const common::Rigid2d T_match_query_laser = T_submap_match_base->inverse() *
                                                   laser->T_submap_node * T_submap_node->inverse() *
                                                   *T_submap_query_base;
@@ -378,8 +381,10 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
                                                           *result.constraint),
                          query, loop.submap, loop.node);
         if (visual) {
-          visual->visual_matches_explained_by_laser =
-              checker_.MatchesExplained(view.id, query, view.expected);
+          if (visual_loop::LaserAndVisualDisagree(laser, *visual, config_.arbitration)) {
+            visual->visual_matches_explained_by_laser =
+                checker_.MatchesExplained(view.id, query, view.expected);
+          }
           break;
         }
       }

@@ -54,6 +54,13 @@ const char* ToString(LoopDecision decision) {
   return "?";
 }
 
+bool LaserAndVisualDisagree(const LoopMeasurement2D& laser, const LoopMeasurement2D& visual,
+                            const ArbitrationOptions& options) {
+  const common::Rigid2d difference = laser.T_submap_node.inverse() * visual.T_submap_node;
+  return difference.translation().norm() > options.max_translation_disagreement_m ||
+         std::abs(difference.angle_rad()) > options.max_rotation_disagreement_rad;
+}
+
 ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMeasurement2D>& laser,
                                 const std::optional<LoopMeasurement2D>& visual,
                                 VisualCheck visual_check, const ArbitrationOptions& options,
@@ -72,8 +79,7 @@ ArbitrationRecord ArbitrateLoop(int node, int submap, const std::optional<LoopMe
     char numbers[96];
     std::snprintf(numbers, sizeof(numbers), "differ by %.3f m, %.2f deg",
                   record.translation_disagreement_m, record.rotation_disagreement_rad * 180.0 / M_PI);
-    const bool agree = record.translation_disagreement_m <= options.max_translation_disagreement_m &&
-                       record.rotation_disagreement_rad <= options.max_rotation_disagreement_rad;
+    const bool agree = !LaserAndVisualDisagree(*laser, *visual, options);
     const bool laser_explains_as_well =
         visual->visual_matches_explained_by_laser >= 0 &&
         visual->visual_matches_explained_by_laser >

@@ -110,6 +110,7 @@ TEST(LoopArbiterTest, AVisualPoseNoBetterThanTheLasersDoesNotReplaceIt) {
   LoopMeasurement2D visual = Measurement(2.07, 0.61, 0.6);
   visual.visual_inliers = 45;
   visual.visual_matches_explained_by_laser = 50;
+  EXPECT_TRUE(LaserAndVisualDisagree(laser, visual, options));  // the session counts only then
   const ArbitrationRecord kept =
       ArbitrateLoop(9, 2, laser, visual, VisualCheck::kVerified, options);
   EXPECT_EQ(kept.decision, LoopDecision::kLaserKept);
@@ -133,6 +134,7 @@ TEST(LoopArbiterTest, AVisualPoseNoBetterThanTheLasersDoesNotReplaceIt) {
   LoopMeasurement2D close = Measurement(2.05, 1.0, 0.51);
   close.visual_inliers = 45;
   close.visual_matches_explained_by_laser = 5;
+  EXPECT_FALSE(LaserAndVisualDisagree(laser, close, options));
   EXPECT_EQ(ArbitrateLoop(9, 2, laser, close, VisualCheck::kVerified, options).decision,
             LoopDecision::kLaserConfirmed);
 }

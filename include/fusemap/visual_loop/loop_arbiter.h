@@ -94,6 +94,12 @@ struct ArbitrationRecord {
   double rotation_disagreement_rad = 0.0;
 };
 
+// Whether a laser and a visual measurement of the same node in the same submap differ by more
+// than max_translation_disagreement_m or max_rotation_disagreement_rad (where ArbitrateLoop
+// weighs the one against the other).
+bool LaserAndVisualDisagree(const LoopMeasurement2D& laser, const LoopMeasurement2D& visual,
+                            const ArbitrationOptions& options);
+
 // The arbitration of issue 17 for one node/submap pair. At least one of laser and a verified
 // visual measurement must be given; visual_check describes the camera when visual is absent.
 // `estimate`, when given, gates a visual loop without a laser loop (max_forced_correction_m).
