@@ -38,8 +38,7 @@ class OrbExtractor {
   // Moves keypoints found on coarse pyramid levels to where their corner is in the image.
   // OpenCV scales a level's pixel index by the level's scale, which puts them up and left of it
   // (~1.5 px at level 6 of 1.2); a place seen at different levels in two views then reads as
-  // motion: the corridor world's 0.7 m camera steps came out 0.68 % long without this, 0.46 %
-  // with it, and ICL's 2-10 cm steps 1.5-2.6 mm off against 1.1-1.8 mm.
+  // motion: ICL's 2-10 cm steps came out 1.5-2.6 mm off without this, 1.1-1.8 mm with it.
   void ToImagePixelCentres(const cv::Size& image_size, std::vector<cv::KeyPoint>* keypoints) const;
 
   OrbOptions options_;
