@@ -215,8 +215,13 @@ void Engine::RunRgbd() {
   using Clock = std::chrono::steady_clock;
   if (!cloud_worker_) {
     const bool visual = session_->visual_stage() != nullptr;
+    // Decoding images is the checker's work here: at the checker's priority, so that it never
+    // takes the CPU from the SLAM thread (scan->pose latency, issue 17), and only for frames
+    // the checker takes.
+    if (!rgbd_consumer_) LowerThisThreadPriority(kVisualThreadNice);
     while (auto frame = intake_.rgbd_queue().Pop()) {
-      if ((rgbd_consumer_ || visual) && intake_.DecodeImages(&*frame)) {
+      const bool wanted = rgbd_consumer_ || (visual && VisualWantsFrame(frame->frame.stamp_s));
+      if (wanted && intake_.DecodeImages(&*frame)) {
         OfferVisualFrame(frame->frame);
         if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
       }
@@ -249,11 +254,13 @@ void Engine::RunRgbd() {
   cloud_worker_->Finish();
 }
 
+bool Engine::VisualWantsFrame(double stamp_s) const {
+  return session_->visual_stage() != nullptr &&
+         !(stamp_s - last_visual_frame_s_ < slam_.visual_loop.checker.selector.min_interval_s);
+}
+
 void Engine::OfferVisualFrame(const sensor::RgbdFrame& frame) {
-  if (session_->visual_stage() == nullptr ||
-      frame.stamp_s - last_visual_frame_s_ < slam_.visual_loop.checker.selector.min_interval_s) {
-    return;
-  }
+  if (!VisualWantsFrame(frame.stamp_s)) return;
   last_visual_frame_s_ = frame.stamp_s;
   visual_frames_.Push(frame);
 }

@@ -2,6 +2,7 @@
 // thread, fed by the SLAM thread's pose updates and the RGB-D thread's frames.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -168,6 +169,47 @@ TEST(VisualThreadTest, ChecksLoopsOnItsOwnThreadAndReportsThem) {
   int lines = 0;
   for (std::string line; std::getline(loops, line);) ++lines;
   EXPECT_GT(lines, 0);
+}
+
+// Decoding a frame's images is the costly part of the RGB-D thread's work; with only the
+// checker to feed, a frame it would skip (closer than selector.min_interval_s to the last one
+// it took) is not decoded. Shown by frames whose depth PNG cannot be decoded: not counted
+// malformed where the checker would skip them anyway.
+TEST(VisualThreadTest, FramesTheCheckerSkipsAreNotDecoded) {
+  RateLimitedLog quiet(1e9, [] { return 0.0; }, [](const std::string&) {});
+  io::SlamConfig config = VisualConfig();
+  config.visual_loop.checker.selector.min_interval_s = 1e6;  // one frame, then none
+  LoopRecorder publisher;
+  Engine engine(config, DaemonOptions(), 1, OverflowPolicy::kBlock, &publisher, &quiet);
+  engine.Start();
+  const test_world::TexturedBoxCamera camera(2.0, 0.0, 10.0, 8.0, 7);
+  // The drive's first scans, each followed by a frame; from the 10th on, each frame has its
+  // depth PNG's compressed data broken (its header, which the intake reads, is intact).
+  constexpr int kScans = 40, kDecodable = 10;
+  int scan = -1;
+  for (const auto& message : test_world::RoomDriveMessages(kStepM, kStartS, 42)) {
+    if (message.channel == "LIDAR" && ++scan == kScans) break;
+    engine.intake().OnMessage(message.channel, message.data.data(),
+                              static_cast<int>(message.data.size()));
+    if (message.channel != "LIDAR") continue;
+    std::vector<uint8_t> bytes;
+    std::string error;
+    ASSERT_TRUE(
+        io::EncodeRgbdFrame(camera.Render(message.stamp_s, test_world::ArcPose(scan, kStepM)),
+                            io::RgbdEncodeOptions(), &bytes, &error))
+        << error;
+    if (scan >= kDecodable) {
+      const std::string idat = "IDAT";
+      const auto at = std::search(bytes.begin(), bytes.end(), idat.begin(), idat.end());
+      ASSERT_LT(at + 8, bytes.end());
+      std::fill(at + 4, at + 8, 0xFF);
+    }
+    engine.intake().OnMessage("RGBD", bytes.data(), static_cast<int>(bytes.size()));
+  }
+  engine.Finish();
+  EXPECT_EQ(engine.intake().counters(kRgbdChannel).received, kScans);
+  EXPECT_EQ(engine.intake().counters(kRgbdChannel).malformed, 0);
+  EXPECT_EQ(publisher.last_health.visual.keyframes, 1);
 }
 
 }  // namespace

@@ -113,6 +113,8 @@ class Engine {
   // RGB-D thread: a decoded frame for the visual thread (those the checker would skip anyway,
   // closer than its min_interval_s, are not copied).
   void OfferVisualFrame(const sensor::RgbdFrame& frame);
+  // RGB-D thread: whether OfferVisualFrame would pass on a frame of this stamp.
+  bool VisualWantsFrame(double stamp_s) const;
   // Visual thread: its keyframes to visual_keyframes_path_.
   void SaveVisualKeyframes(const session::VisualStage& stage);
   void Process(SensorMessage& message);
