@@ -214,13 +214,12 @@ void Engine::MaybeCheckpoint(bool force) {
 void Engine::RunRgbd() {
   using Clock = std::chrono::steady_clock;
   if (!cloud_worker_) {
-    const bool visual = session_->visual_stage() != nullptr;
     // Decoding images is the checker's work here: at the checker's priority, so that it never
     // takes the CPU from the SLAM thread (scan->pose latency, issue 17), and only for frames
     // the checker takes.
     if (!rgbd_consumer_) LowerThisThreadPriority(kVisualThreadNice);
     while (auto frame = intake_.rgbd_queue().Pop()) {
-      const bool wanted = rgbd_consumer_ || (visual && VisualWantsFrame(frame->frame.stamp_s));
+      const bool wanted = rgbd_consumer_ || VisualWantsFrame(frame->frame.stamp_s);
       if (wanted && intake_.DecodeImages(&*frame)) {
         OfferVisualFrame(frame->frame);
         if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));
