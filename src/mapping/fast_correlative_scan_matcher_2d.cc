@@ -51,8 +51,17 @@ FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
 bool FastCorrelativeScanMatcher2D::Match(const common::Rigid2d& initial_pose,
                                          const sensor::PointCloud2d& cloud, double min_score,
                                          double* score, common::Rigid2d* pose) const {
-  const SearchParameters params(options_.linear_search_window_m,
-                                options_.angular_search_window_rad, cloud, limits_.resolution_m);
+  return MatchInWindow(initial_pose, options_.linear_search_window_m, cloud, min_score, score,
+                       pose);
+}
+
+bool FastCorrelativeScanMatcher2D::MatchInWindow(const common::Rigid2d& initial_pose,
+                                                 double linear_search_window_m,
+                                                 const sensor::PointCloud2d& cloud,
+                                                 double min_score, double* score,
+                                                 common::Rigid2d* pose) const {
+  const SearchParameters params(linear_search_window_m, options_.angular_search_window_rad, cloud,
+                                limits_.resolution_m);
   const bool with_prior =
       options_.translation_delta_cost_weight > 0.0 || options_.rotation_delta_cost_weight > 0.0;
   return MatchWithSearchParameters(params, initial_pose, cloud, min_score, with_prior, score,

@@ -1,5 +1,6 @@
 #include "fusemap/pose_graph/loop_closure_matcher_2d.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "fusemap/mapping/scan_matching/match_evidence_2d.h"
@@ -47,6 +48,9 @@ void ConstraintBuilderOptions2D::Check(common::OptionChecker* check) const {
       "min_translation_information_ratio", "must be in [0, 1]");
   check->Require(max_correction_m >= 0.0, "max_correction_m", "must be >= 0");
   check->Require(max_correction_per_path_m >= 0.0, "max_correction_per_path_m", "must be >= 0");
+  check->Require(max_linear_search_window_m >= fast_correlative_scan_matcher.linear_search_window_m,
+                 "max_linear_search_window_m",
+                 "must be >= fast_correlative_scan_matcher.linear_search_window_m");
   check->Require(max_unevidenced_correction_m >= 0.0, "max_unevidenced_correction_m",
                  "must be >= 0");
   check->Require(min_correction_evidence_z >= 0.0, "min_correction_evidence_z", "must be >= 0");
@@ -69,6 +73,7 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
   reader.Get("min_translation_information_ratio", &options.min_translation_information_ratio);
   reader.Get("max_correction_m", &options.max_correction_m);
   reader.Get("max_correction_per_path_m", &options.max_correction_per_path_m);
+  reader.Get("max_linear_search_window_m", &options.max_linear_search_window_m);
   reader.Get("max_unevidenced_correction_m", &options.max_unevidenced_correction_m);
   reader.Get("min_correction_evidence_z", &options.min_correction_evidence_z);
   reader.Get("min_score_of_own_fit", &options.min_score_of_own_fit);
@@ -98,6 +103,13 @@ bool DriftExplainsCorrection(const common::Rigid2d& T_submap_node_estimate,
   if (options.max_correction_m == 0.0) return true;
   return CorrectionM(T_submap_node_estimate, T_submap_node_match) <=
          options.max_correction_m + options.max_correction_per_path_m * path_m;
+}
+
+double LoopSearchWindowM(double path_m, const ConstraintBuilderOptions2D& options) {
+  const double fixed_m = options.fast_correlative_scan_matcher.linear_search_window_m;
+  if (options.max_correction_m == 0.0) return fixed_m;
+  return std::clamp(options.max_correction_m + options.max_correction_per_path_m * path_m, fixed_m,
+                    options.max_linear_search_window_m);
 }
 
 bool EvidenceSupportsCorrection(const common::Rigid2d& T_submap_node_estimate,
@@ -133,14 +145,15 @@ double LoopClosureMatcher2D::ScoreAt(const common::Rigid2d& T_submap_node,
 
 std::optional<Constraint2D> LoopClosureMatcher2D::Match(
     const common::Rigid2d& T_submap_node_estimate, const sensor::PointCloud2d& cloud,
-    double min_score, double* score) const {
+    double min_score, double* score, double path_m) const {
   *score = 0.0;
   if (cloud.empty()) return std::nullopt;
   // Submap grids live in the local SLAM frame; T_local_submap takes submap to grid coordinates.
   const common::Rigid2d T_grid_submap = submap_->T_local_submap();
   const common::Rigid2d initial = T_grid_submap * T_submap_node_estimate;
   common::Rigid2d T_grid_node;
-  if (!fast_matcher_.Match(initial, cloud, min_score, score, &T_grid_node)) {
+  if (!fast_matcher_.MatchInWindow(initial, LoopSearchWindowM(path_m, options_), cloud, min_score,
+                                   score, &T_grid_node)) {
     return std::nullopt;
   }
   // Only matches that pass min_score are refined, a small fraction of the searches: they

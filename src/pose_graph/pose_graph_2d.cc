@@ -295,6 +295,7 @@ void PoseGraph2D::RunBestSearch() {
   std::shared_ptr<const LoopClosureMatcher2D> matcher;
   std::shared_ptr<const sensor::PointCloud2d> cloud;
   double min_score = 0.0;
+  double path_m = 0.0;
   std::vector<std::function<void()>> first_tasks;
   {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -312,6 +313,7 @@ void PoseGraph2D::RunBestSearch() {
     if (matcher) {
       cloud = std::make_shared<const sensor::PointCloud2d>(NodeLocked(search.node).cloud);
       min_score = MinScoreForOwnFit(submaps_[search.submap].own_fit, options_.constraint_builder);
+      path_m = PathBetweenLocked(search.node, search.submap);
     }
     first_tasks.swap(pending_first_tasks_);
   }
@@ -320,7 +322,7 @@ void PoseGraph2D::RunBestSearch() {
   const auto start = std::chrono::steady_clock::now();
   double score = 0.0;
   std::optional<Constraint2D> constraint =
-      matcher->Match(search.T_submap_node, *cloud, min_score, &score);
+      matcher->Match(search.T_submap_node, *cloud, min_score, &score, path_m);
   std::lock_guard<std::mutex> lock(mutex_);
   searches_in_flight_.erase(id);
   stats_.loop_closure_search_s += SecondsSince(start);
@@ -342,7 +344,10 @@ void PoseGraph2D::RunBestSearch() {
   constraint->node = search.node;
   constraint->laser_score = score;
   if (!constraint->unmeasured_direction.isZero()) ++stats_.loop_closures_degenerate;
-  AddLoopClosureLocked(*constraint);
+  const ConstraintBuilderOptions2D& builder = options_.constraint_builder;
+  const bool widened = LoopSearchWindowM(path_m, builder) >
+                       builder.fast_correlative_scan_matcher.linear_search_window_m;
+  AddLoopClosureLocked(*constraint, widened);
 }
 
 double PoseGraph2D::OwnFitLocked(int s, const LoopClosureMatcher2D& matcher) {
@@ -383,16 +388,22 @@ void PoseGraph2D::InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureM
   }
 }
 
-void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint) {
-  const LoopClosureVerificationOptions2D& verification = options_.loop_closure_verification;
+void PoseGraph2D::AddLoopClosureLocked(const Constraint2D& constraint, bool needs_agreement) {
+  LoopClosureVerificationOptions2D verification = options_.loop_closure_verification;
   constraints_.push_back(constraint);
   constraints_.back().loop_id = next_loop_id_++;
-  if (!verification.enabled()) {
+  if (verification.enabled() || needs_agreement) {
+    constraints_.back().tag = Constraint2D::kLoopClosureCandidate;
+  } else {
     ++stats_.loop_closures_found;
     NoteAcceptedLocked(constraints_.back());
-    return;
+    // Without verification only matches of widened searches wait, for a partner like this one.
+    const bool any_waiting = std::any_of(
+        constraints_.begin(), constraints_.end(),
+        [](const Constraint2D& c) { return c.tag == Constraint2D::kLoopClosureCandidate; });
+    if (!any_waiting) return;
   }
-  constraints_.back().tag = Constraint2D::kLoopClosureCandidate;
+  verification.min_agreeing_closures = std::max(verification.min_agreeing_closures, 1);
   // Every match so far, candidate or accepted, in local SLAM's frame, which nothing moves.
   std::vector<ClosureView2D> views;
   std::vector<size_t> constraint_index;

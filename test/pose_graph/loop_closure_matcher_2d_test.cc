@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <vector>
 
 #include "fusemap/common/math.h"
@@ -257,6 +258,44 @@ TEST(DriftExplainsCorrectionTest, TheBoundGrowsWithThePathBetween) {
   EXPECT_TRUE(DriftExplainsCorrection(estimate, three_m_off, 0.0, options));
 }
 
+// The linear window follows the drift bound: 4 m (the configured window) until the bound
+// passes it at 175 m of path, 6.5 m after 300 m, never more than 12 m; fixed without the bound.
+TEST(LoopSearchWindowMTest, FollowsTheDriftBoundWithinItsLimits) {
+  ConstraintBuilderOptions2D options;
+  ASSERT_EQ(options.fast_correlative_scan_matcher.linear_search_window_m, 4.0);
+  ASSERT_EQ(options.max_linear_search_window_m, 12.0);
+  EXPECT_DOUBLE_EQ(LoopSearchWindowM(0.0, options), 4.0);
+  EXPECT_DOUBLE_EQ(LoopSearchWindowM(100.0, options), 4.0);
+  EXPECT_DOUBLE_EQ(LoopSearchWindowM(300.0, options), 6.5);
+  EXPECT_DOUBLE_EQ(LoopSearchWindowM(2000.0, options), 12.0);
+  options.max_correction_m = 0.0;
+  EXPECT_DOUBLE_EQ(LoopSearchWindowM(2000.0, options), 4.0);
+}
+
+// A revisit whose estimate is 5.1 m off, beyond the fixed 4 m window: not found right just
+// after the submap, found within centimetres after 300 m of path (window 6.5 m).
+TEST(LoopClosureMatcher2DTest, ARevisitBeyondTheFixedWindowIsFoundAfterALongPath) {
+  const auto submap = BuildFinishedSubmap();
+  const ConstraintBuilderOptions2D options;
+  const LoopClosureMatcher2D matcher(submap, options);
+  const common::Rigid2d T_world_node(6.9, 1.75, 0.35);
+  const common::Rigid2d T_submap_node = submap->T_local_submap().inverse() * T_world_node;
+  const common::Rigid2d estimate(T_submap_node.translation() + Eigen::Vector2d(-5.0, 1.0),
+                                 T_submap_node.angle_rad());
+  const sensor::PointCloud2d cloud = LoopClosureCloud(SimulateRangeData(Room(), T_world_node));
+  const double min_score = options.fast_correlative_scan_matcher.min_score;
+  const auto error_m = [&](const std::optional<Constraint2D>& c) {
+    return c ? (c->T_submap_node.translation() - T_submap_node.translation()).norm()
+             : std::numeric_limits<double>::infinity();
+  };
+  double score = 0.0;
+  EXPECT_GT(error_m(matcher.Match(estimate, cloud, min_score, &score, 0.0)), 0.5);
+  const auto after_long_path = matcher.Match(estimate, cloud, min_score, &score, 300.0);
+  ASSERT_TRUE(after_long_path.has_value()) << "score " << score;
+  EXPECT_LT(error_m(after_long_path), 0.03);
+  EXPECT_TRUE(DriftExplainsCorrection(estimate, after_long_path->T_submap_node, 300.0, options));
+}
+
 // Up to 0.2 m a match is taken on its score; beyond, only with 2 standard errors of evidence
 // over the estimate; min_correction_evidence_z 0 takes every match.
 TEST(EvidenceSupportsCorrectionTest, LargerCorrectionsNeedEvidence) {
@@ -312,6 +351,10 @@ TEST(ConstraintBuilderOptions2DTest, RejectsBadOptions) {
   options.min_score_of_own_fit = 1.5;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("min_score_of_own_fit"), std::string::npos) << error;
+  options.min_score_of_own_fit = 0.85;
+  options.max_linear_search_window_m = 3.0;  // below the 4 m window
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("max_linear_search_window_m"), std::string::npos) << error;
 }
 
 }  // namespace

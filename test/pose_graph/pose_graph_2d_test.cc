@@ -355,6 +355,48 @@ TEST(PoseGraph2DTest, VerifiedLoopClosuresStillCloseTheLoop) {
   EXPECT_LT(EndErrorM(run.T_map_nodes), 0.08);
 }
 
+// A search widened beyond the configured window (LoopSearchWindowM) reaches more places a scan
+// fits by chance: its match waits as a candidate until another closure agrees with it, even
+// with verification off. Here every search is widened (max_correction_m 1.5 m over a 1 m
+// window): the first match waits, and the lap still closes once they agree. With the window
+// held at 1 m the first match is taken at once.
+TEST(PoseGraph2DTest, MatchesOfWidenedSearchesWaitForAnAgreeingClosure) {
+  const auto run = [](double max_linear_search_window_m, PoseGraph2D::Stats* at_first_match) {
+    PoseGraphOptions2D options = TestOptions(10);
+    ASSERT_FALSE(options.loop_closure_verification.enabled());
+    options.constraint_builder.max_correction_m = 1.5;
+    options.constraint_builder.max_linear_search_window_m = max_linear_search_window_m;
+    common::InlineExecutor executor;
+    PoseGraph2D graph(options, &executor);
+    test_world::DriftingArcDrive drive(kStepM);
+    bool matched = false;
+    for (int i = 0; i < kLapAndATenthNodes; ++i) {
+      const test_world::DriftingArcDrive::Step step = drive.Next();
+      graph.AddNode(0.1 * i, step.T_local_node, step.filtered_cloud, step.insertion_submaps);
+      const PoseGraph2D::Stats stats = graph.stats();
+      if (!matched && stats.loop_closures_found + stats.loop_closure_candidates > 0) {
+        matched = true;
+        *at_first_match = stats;
+      }
+    }
+    graph.RunFinalOptimization();
+    ASSERT_TRUE(matched);
+    const PoseGraph2D::Stats stats = graph.stats();
+    std::printf("window up to %.1f m: %d accepted, %d waiting at the end\n",
+                max_linear_search_window_m, stats.loop_closures_found,
+                stats.loop_closure_candidates);
+    EXPECT_GT(stats.loop_closures_found, 0);
+    EXPECT_LT(EndErrorM(graph.Snapshot()->T_map_nodes), 0.08);
+  };
+  PoseGraph2D::Stats widened, fixed;
+  run(2.0, &widened);
+  EXPECT_EQ(widened.loop_closures_found, 0);
+  EXPECT_GT(widened.loop_closure_candidates, 0);
+  run(1.0, &fixed);
+  EXPECT_GT(fixed.loop_closures_found, 0);
+  EXPECT_EQ(fixed.loop_closure_candidates, 0);
+}
+
 TEST(PoseGraph2DTest, OptionsValidation) {
   std::string error;
   PoseGraphOptions2D options;

@@ -47,6 +47,15 @@ struct ConstraintBuilderOptions2D {
   // max_correction_m takes every match.
   double max_correction_m = 0.5;
   double max_correction_per_path_m = 0.02;
+  // The search's linear window follows the same bound (LoopSearchWindowM): never below
+  // fast_correlative_scan_matcher.linear_search_window_m, never above this. A long corridor's
+  // revisit after hundreds of metres without a closure lies further from where the graph puts
+  // it than a fixed window reaches (freiburg-campus: its last leg 12 m along its first, 580 m
+  // of path later). Equal to linear_search_window_m: a fixed window. A wider window reaches
+  // more places a scan fits by chance, so PoseGraph2D holds a match from a widened search back
+  // until another loop closure agrees with it (loop_closure_verification's pairwise test, with
+  // at least one partner even where verification is off).
+  double max_linear_search_window_m = 12.0;
   // A match that moves the node more than max_unevidenced_correction_m from the estimate is
   // taken only if the scan fits the submap there better than at the estimate by at least
   // min_correction_evidence_z standard errors of the per-point gain (EvidenceSupportsCorrection):
@@ -79,8 +88,9 @@ struct ConstraintBuilderOptions2D {
 
 // Keys: sampling_ratio, max_constraint_distance_m, loop_closure_translation_weight,
 // loop_closure_rotation_weight, min_translation_information_ratio, max_correction_m,
-// max_correction_per_path_m, max_unevidenced_correction_m, min_correction_evidence_z,
-// min_score_of_own_fit, fast_correlative_scan_matcher, ceres_scan_matcher.
+// max_correction_per_path_m, max_linear_search_window_m, max_unevidenced_correction_m,
+// min_correction_evidence_z, min_score_of_own_fit, fast_correlative_scan_matcher,
+// ceres_scan_matcher.
 ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader& reader);
 
 // Whether local SLAM's drift over `path_m` of travel explains a loop closure that moves the node
@@ -89,6 +99,11 @@ ConstraintBuilderOptions2D ParseConstraintBuilderOptions2D(common::ConfigReader&
 bool DriftExplainsCorrection(const common::Rigid2d& T_submap_node_estimate,
                              const common::Rigid2d& T_submap_node_match, double path_m,
                              const ConstraintBuilderOptions2D& options);
+
+// The linear search window for a node and a submap `path_m` of travel apart: the correction
+// drift explains there (DriftExplainsCorrection), within [linear_search_window_m,
+// max_linear_search_window_m]; linear_search_window_m with max_correction_m 0.
+double LoopSearchWindowM(double path_m, const ConstraintBuilderOptions2D& options);
 
 // Whether the match's evidence (Constraint2D::evidence_z) supports how far it moves the node
 // from `T_submap_node_estimate` to `T_submap_node_match` (max_unevidenced_correction_m,
@@ -116,9 +131,11 @@ class LoopClosureMatcher2D {
   // is set and its translation along it is the estimate's: the match's is no measurement, and
   // the constraint holds nothing there. The constraint's evidence_z compares its pose with the
   // estimate.
+  // The linear window is LoopSearchWindowM(path_m): `path_m` is the travel between the node
+  // and the submap (0: the configured linear_search_window_m).
   std::optional<Constraint2D> Match(const common::Rigid2d& T_submap_node_estimate,
                                     const sensor::PointCloud2d& cloud, double min_score,
-                                    double* score) const;
+                                    double* score, double path_m = 0.0) const;
   // The score a match of `cloud` at T_submap_node itself would have (no search).
   double ScoreAt(const common::Rigid2d& T_submap_node, const sensor::PointCloud2d& cloud) const;
   // Memory held by the precomputation grids (the submap is counted by its owner).

@@ -352,9 +352,11 @@ class PoseGraph2D {
   void InstallMatcherLocked(int s, std::shared_ptr<const LoopClosureMatcher2D> matcher);
   // SubmapData::own_fit of submap s, measured with its matcher (0 without nodes left).
   double OwnFitLocked(int s, const LoopClosureMatcher2D& matcher);
-  // Adds a found match: at once, or with verification on as a candidate that is accepted
-  // (together with the candidates it confirms) once enough closures agree with it.
-  void AddLoopClosureLocked(const Constraint2D& constraint);
+  // Adds a found match: at once, or with verification on (or `needs_agreement`: it came from a
+  // search widened beyond the configured window, LoopSearchWindowM) as a candidate that is
+  // accepted (together with the candidates it confirms) once enough closures agree with it, at
+  // least one. A match accepted at once still confirms the candidates it agrees with.
+  void AddLoopClosureLocked(const Constraint2D& constraint, bool needs_agreement);
   // Builds the precomputation grids of finished submap `s`, then queues `searches`, and with
   // `search_all_nodes` a search of every node near it.
   std::function<void()> MakeMatcherTask(int s, std::shared_ptr<const mapping::Submap2D> submap,

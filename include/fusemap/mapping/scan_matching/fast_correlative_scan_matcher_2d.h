@@ -56,6 +56,10 @@ class FastCorrelativeScanMatcher2D {
   // frame). Returns true and fills *score and *pose if the best score exceeds `min_score`.
   bool Match(const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud,
              double min_score, double* score, common::Rigid2d* pose) const;
+  // As Match, with `linear_search_window_m` in place of the option's.
+  bool MatchInWindow(const common::Rigid2d& initial_pose, double linear_search_window_m,
+                     const sensor::PointCloud2d& cloud, double min_score, double* score,
+                     common::Rigid2d* pose) const;
 
   // The score Match gives `cloud` (tracking frame) at `pose` (T_grid_tracking) itself, with
   // no search: the mean quantised probability of the cells its points fall in (0 off the grid).
