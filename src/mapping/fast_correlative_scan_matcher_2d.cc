@@ -39,10 +39,11 @@ FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
 }
 
 FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
-    const ProbabilityGrid& grid, const FastCorrelativeScanMatcherOptions2D& options)
+    const ProbabilityGrid& grid, const FastCorrelativeScanMatcherOptions2D& options,
+    PrecomputationBuffers* buffers)
     : limits_(grid.limits()),
       options_(options),
-      grids_(grid, options.branch_and_bound_depth) {
+      grids_(grid, options.branch_and_bound_depth, buffers) {
   std::string error;
   assert(options_.IsValid(&error));
   (void)error;

@@ -141,8 +141,10 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
             : 0;
     const ProbabilityGrid coarse =
         MaxPoolGrid(*grid, factor, options_.unknown_probability, pad_cells);
+    if (matcher_ != nullptr) matcher_->ReleaseGridsInto(&buffers_);
+    if (local_matcher_ != nullptr) local_matcher_->ReleaseGridsInto(&buffers_);
     matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(
-        coarse, options_.fast_correlative_scan_matcher);
+        coarse, options_.fast_correlative_scan_matcher, &buffers_);
     if (options_.min_score_gain > 0.0) {
       FastCorrelativeScanMatcherOptions2D local;
       local.linear_search_window_m = options_.near_linear_search_window_m;
@@ -152,7 +154,7 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
           options_.fast_correlative_scan_matcher.translation_delta_cost_weight;
       local.rotation_delta_cost_weight =
           options_.fast_correlative_scan_matcher.rotation_delta_cost_weight;
-      local_matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(coarse, local);
+      local_matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(coarse, local, &buffers_);
     }
     cached_submap_ = submap;
     cached_num_range_data_ = submap->num_range_data();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <utility>
 
 namespace fusemap {
 namespace mapping {
@@ -26,12 +27,28 @@ namespace {
 // all-exact levels; at 1 or 2 the looser bounds made it 1.6-1.9x slower.
 constexpr int kExactDepths = 3;
 
+std::vector<uint8_t> TakeBuffer(PrecomputationBuffers* buffers, size_t size) {
+  return buffers != nullptr ? buffers->Take(size) : std::vector<uint8_t>(size);
+}
+
+void GiveBuffer(PrecomputationBuffers* buffers, std::vector<uint8_t> buffer) {
+  if (buffers != nullptr) buffers->Give(std::move(buffer));
+}
+
 // Values for indices [min, min + size) per axis, row-major; 0 elsewhere.
 struct Plane {
   Eigen::Array2i min = Eigen::Array2i::Zero();
   int size_x = 0;
   int size_y = 0;
   std::vector<uint8_t> values;
+};
+
+// A plane read in place: a scratch Plane or a stored level, which is not copied.
+struct PlaneView {
+  Eigen::Array2i min;
+  int size_x;
+  int size_y;
+  const uint8_t* values;
   uint8_t At(int x, int y) const {
     x -= min.x();
     y -= min.y();
@@ -40,12 +57,17 @@ struct Plane {
   }
 };
 
+PlaneView View(const Plane& plane) {
+  return {plane.min, plane.size_x, plane.size_y, plane.values.data()};
+}
+
 // Maximum over 2 x 2 blocks: block maxima at twice the block size (`in` starts at index 0).
-Plane HalveByMax(const Plane& in) {
+// Every output value is written, so `buffers` may hand out storage with stale values.
+Plane HalveByMax(const PlaneView& in, PrecomputationBuffers* buffers) {
   Plane out;
   out.size_x = (in.size_x + 1) / 2;
   out.size_y = (in.size_y + 1) / 2;
-  out.values.resize(static_cast<size_t>(out.size_x) * out.size_y);
+  out.values = TakeBuffer(buffers, static_cast<size_t>(out.size_x) * out.size_y);
   for (int y = 0; y < out.size_y; ++y) {
     for (int x = 0; x < out.size_x; ++x) {
       out.values[static_cast<size_t>(y) * out.size_x + x] =
@@ -58,19 +80,20 @@ Plane HalveByMax(const Plane& in) {
 
 // out(k) = max over j in [0, n) of in(k + j * stride), per axis, for every k whose terms touch
 // `in`: k from in.min - (n - 1) * stride on. Separable: along x, then along y, on whole rows
-// (these planes have millions of cells and are rebuilt during local SLAM).
-Plane MaxOfStrided(const Plane& in, int n, int stride) {
+// (these planes have millions of cells and are rebuilt during local SLAM). Every output value
+// is written, as in HalveByMax.
+Plane MaxOfStrided(const PlaneView& in, int n, int stride, PrecomputationBuffers* buffers) {
   const int reach = (n - 1) * stride;
   Plane along_x;
   along_x.min = Eigen::Array2i(in.min.x() - reach, in.min.y());
   along_x.size_x = in.size_x + reach;
   along_x.size_y = in.size_y;
-  along_x.values.resize(static_cast<size_t>(along_x.size_x) * along_x.size_y);
+  along_x.values = TakeBuffer(buffers, static_cast<size_t>(along_x.size_x) * along_x.size_y);
   // One input row with `reach` zeros on both sides: output i reads padded[i + t * stride].
-  std::vector<uint8_t> padded(static_cast<size_t>(in.size_x) + 2 * reach, 0);
+  std::vector<uint8_t> padded = TakeBuffer(buffers, static_cast<size_t>(in.size_x) + 2 * reach);
+  std::fill(padded.begin(), padded.end(), 0);
   for (int y = 0; y < in.size_y; ++y) {
-    std::copy_n(in.values.begin() + static_cast<size_t>(y) * in.size_x, in.size_x,
-                padded.begin() + reach);
+    std::copy_n(in.values + static_cast<size_t>(y) * in.size_x, in.size_x, padded.begin() + reach);
     uint8_t* out_row = along_x.values.data() + static_cast<size_t>(y) * along_x.size_x;
     std::copy_n(padded.begin(), along_x.size_x, out_row);
     for (int t = 1; t < n; ++t) {
@@ -82,33 +105,80 @@ Plane MaxOfStrided(const Plane& in, int n, int stride) {
   out.min = Eigen::Array2i(along_x.min.x(), in.min.y() - reach);
   out.size_x = along_x.size_x;
   out.size_y = in.size_y + reach;
-  out.values.assign(static_cast<size_t>(out.size_x) * out.size_y, 0);
+  out.values = TakeBuffer(buffers, static_cast<size_t>(out.size_x) * out.size_y);
   for (int j = 0; j < out.size_y; ++j) {
     uint8_t* out_row = out.values.data() + static_cast<size_t>(j) * out.size_x;
+    bool written = false;
     for (int t = 0; t < n; ++t) {
       const int source_row = j - reach + t * stride;
       if (source_row < 0 || source_row >= along_x.size_y) continue;
       const uint8_t* source = along_x.values.data() + static_cast<size_t>(source_row) * out.size_x;
+      if (!written) {
+        std::copy_n(source, out.size_x, out_row);
+        written = true;
+        continue;
+      }
       for (int i = 0; i < out.size_x; ++i) out_row[i] = std::max(out_row[i], source[i]);
     }
+    if (!written) std::fill_n(out_row, out.size_x, 0);
   }
+  GiveBuffer(buffers, std::move(along_x.values));
+  GiveBuffer(buffers, std::move(padded));
   return out;
 }
 
 }  // namespace
 
+std::vector<uint8_t> PrecomputationBuffers::Take(size_t size) {
+  auto best = buffers_.end();
+  for (auto it = buffers_.begin(); it != buffers_.end(); ++it) {
+    if (best == buffers_.end()) {
+      best = it;
+      continue;
+    }
+    const bool fits = it->capacity() >= size;
+    const bool best_fits = best->capacity() >= size;
+    if (fits ? (!best_fits || it->capacity() < best->capacity())
+             : (!best_fits && it->capacity() > best->capacity())) {
+      best = it;
+    }
+  }
+  std::vector<uint8_t> buffer;
+  if (best != buffers_.end()) {
+    buffer = std::move(*best);
+    buffers_.erase(best);
+  }
+  buffer.resize(size);
+  return buffer;
+}
+
+void PrecomputationBuffers::Give(std::vector<uint8_t> buffer) {
+  if (buffer.capacity() == 0) return;  // nothing to reuse
+  buffers_.push_back(std::move(buffer));
+}
+
 PrecomputationGrid2D::PrecomputationGrid2D(int width_cells, int block_shift,
-                                           const Eigen::Array2i& min_block, int size_x,
-                                           int size_y)
+                                           const Eigen::Array2i& min_block, int size_x, int size_y,
+                                           std::vector<uint8_t> values)
     : width_cells_(width_cells),
       block_shift_(block_shift),
       min_block_(min_block),
       size_x_(size_x),
-      size_y_(size_y) {}
+      size_y_(size_y),
+      values_(std::move(values)) {
+  assert(values_.size() == static_cast<size_t>(size_x_) * size_y_);
+}
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
-    : PrecomputationGrid2D(1, 0, Eigen::Array2i::Zero(), grid.limits().num_x_cells,
-                           grid.limits().num_y_cells) {
+    : PrecomputationGrid2D(grid, std::vector<uint8_t>()) {}
+
+PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, std::vector<uint8_t> values)
+    : width_cells_(1),
+      block_shift_(0),
+      min_block_(Eigen::Array2i::Zero()),
+      size_x_(grid.limits().num_x_cells),
+      size_y_(grid.limits().num_y_cells),
+      values_(std::move(values)) {
   values_.resize(static_cast<size_t>(size_x_) * size_y_);
   const std::vector<uint16_t>& cells = grid.cells();
   // Raw cells quantised through a table (ValueToProbability reads kUnknownValue as
@@ -155,33 +225,46 @@ long PrecomputationGrid2D::SumValues(const std::vector<Eigen::Array2i>& cells,
   return sum;
 }
 
-PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth) {
+PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,
+                                                     PrecomputationBuffers* buffers) {
   assert(max_depth >= 0);
+  // Reserved: the levels are read in place (PlaneView) while the next one is built.
   grids_.reserve(max_depth + 1);
-  grids_.emplace_back(grid);
-  const PrecomputationGrid2D& base = grids_.front();
-  // The exact window maxima of the last exact depth, and block maxima for the blocked ones.
-  Plane exact{base.min_block_, base.size_x_, base.size_y_, base.values_};
-  Plane blocks = exact;
+  grids_.push_back(PrecomputationGrid2D(
+      grid, TakeBuffer(buffers, static_cast<size_t>(grid.limits().num_x_cells) *
+                                    grid.limits().num_y_cells)));
+  const auto view = [](const PrecomputationGrid2D& level) {
+    return PlaneView{level.min_block_, level.size_x_, level.size_y_, level.values_.data()};
+  };
+  // Block maxima for the blocked depths, halved from the base grid one depth after another.
+  Plane blocks;
+  bool blocks_built = false;
   for (int depth = 1; depth <= max_depth; ++depth) {
     const int width = 1 << depth;
     Plane level;
     int block_shift = 0;
     if (depth <= kExactDepths) {
-      // The window of w is two windows of w / 2, side by side.
-      exact = MaxOfStrided(exact, 2, width / 2);
-      level = exact;
+      // The window of w is two windows of w / 2 (the previous depth, exact), side by side.
+      level = MaxOfStrided(view(grids_.back()), 2, width / 2, buffers);
     } else {
       block_shift = depth - kExactDepths;
-      blocks = HalveByMax(blocks);
+      Plane halved = HalveByMax(blocks_built ? View(blocks) : view(grids_.front()), buffers);
+      GiveBuffer(buffers, std::move(blocks.values));
+      blocks = std::move(halved);
+      blocks_built = true;
       // A window of w starting anywhere in a block reaches this many blocks.
       const int block = 1 << block_shift;
-      level = MaxOfStrided(blocks, (width - 1 + block - 1) / block + 1, 1);
+      level = MaxOfStrided(View(blocks), (width - 1 + block - 1) / block + 1, 1, buffers);
     }
-    PrecomputationGrid2D stored(width, block_shift, level.min, level.size_x, level.size_y);
-    stored.values_ = std::move(level.values);
-    grids_.push_back(std::move(stored));
+    grids_.push_back(PrecomputationGrid2D(width, block_shift, level.min, level.size_x, level.size_y,
+                                          std::move(level.values)));
   }
+  GiveBuffer(buffers, std::move(blocks.values));
+}
+
+void PrecomputationGridStack2D::ReleaseInto(PrecomputationBuffers* buffers) {
+  for (PrecomputationGrid2D& grid : grids_) buffers->Give(std::move(grid.values_));
+  grids_.clear();
 }
 
 size_t PrecomputationGridStack2D::bytes() const {

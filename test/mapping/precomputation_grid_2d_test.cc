@@ -157,6 +157,55 @@ TEST(PrecomputationGrid2DTest, DeepPyramidTakesUnderFiveBytesPerCell) {
   EXPECT_GT(stack.bytes() / cells, 4.0);
 }
 
+// A stack built in recycled storage (InitialMatcher2D rebuilds one after every insertion)
+// holds exactly the values of a fresh one, whatever the storage held before (the levels of a
+// larger or a smaller grid), and the storage does not grow from one rebuild to the next.
+TEST(PrecomputationGridStack2DTest, RecycledStorageGivesTheSameValues) {
+  const ProbabilityGrid large = MakeRandomGrid(61, 47, 7);
+  const ProbabilityGrid small = MakeRandomGrid(29, 33, 8);
+  PrecomputationBuffers buffers;
+  size_t buffers_after_first_round = 0;
+  for (int round = 0; round < 3; ++round) {
+    for (const ProbabilityGrid* grid : {&large, &small}) {
+      PrecomputationGridStack2D recycled(*grid, 5, &buffers);
+      const PrecomputationGridStack2D fresh(*grid, 5);
+      ASSERT_EQ(recycled.max_depth(), fresh.max_depth());
+      for (int depth = 0; depth <= fresh.max_depth(); ++depth) {
+        const int width = 1 << depth;
+        for (int y = -2 * width - 2; y < grid->limits().num_y_cells + 2; ++y) {
+          for (int x = -2 * width - 2; x < grid->limits().num_x_cells + 2; ++x) {
+            const Eigen::Array2i cell(x, y);
+            ASSERT_EQ(recycled.Get(depth).GetValue(cell), fresh.Get(depth).GetValue(cell))
+                << "round " << round << " depth " << depth << " cell " << x << "," << y;
+          }
+        }
+      }
+      recycled.ReleaseInto(&buffers);
+      EXPECT_EQ(recycled.max_depth(), -1);
+    }
+    if (round == 0) buffers_after_first_round = buffers.count();
+    EXPECT_EQ(buffers.count(), buffers_after_first_round) << "round " << round;
+  }
+  EXPECT_GT(buffers_after_first_round, 0u);
+}
+
+// Take hands out the smallest buffer that holds the size, else the largest, grown.
+TEST(PrecomputationBuffersTest, TakesTheSmallestThatFitsElseTheLargest) {
+  PrecomputationBuffers buffers;
+  for (size_t size : {100u, 400u, 200u}) buffers.Give(std::vector<uint8_t>(size));
+  buffers.Give(std::vector<uint8_t>());  // nothing to reuse: not kept
+  ASSERT_EQ(buffers.count(), 3u);
+  std::vector<uint8_t> fits = buffers.Take(150);
+  EXPECT_EQ(fits.size(), 150u);
+  EXPECT_EQ(fits.capacity(), 200u);
+  std::vector<uint8_t> grown = buffers.Take(1000);
+  EXPECT_EQ(grown.size(), 1000u);
+  EXPECT_EQ(buffers.count(), 1u);
+  EXPECT_EQ(buffers.Take(50).capacity(), 100u);
+  EXPECT_EQ(buffers.count(), 0u);
+  EXPECT_EQ(buffers.Take(10).size(), 10u);  // none left: a new one
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

@@ -46,8 +46,11 @@ FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
 // (scores as quantised by precomputation_grid_2d.h). Holds no reference to the grid.
 class FastCorrelativeScanMatcher2D {
  public:
+  // With `buffers`, the precomputation grids are built in their storage (see
+  // PrecomputationGridStack2D).
   FastCorrelativeScanMatcher2D(const ProbabilityGrid& grid,
-                               const FastCorrelativeScanMatcherOptions2D& options);
+                               const FastCorrelativeScanMatcherOptions2D& options,
+                               PrecomputationBuffers* buffers = nullptr);
 
   FastCorrelativeScanMatcher2D(const FastCorrelativeScanMatcher2D&) = delete;
   FastCorrelativeScanMatcher2D& operator=(const FastCorrelativeScanMatcher2D&) = delete;
@@ -70,6 +73,9 @@ class FastCorrelativeScanMatcher2D {
                        common::Rigid2d* pose) const;
 
   const PrecomputationGridStack2D& precomputation_grids() const { return grids_; }
+  // Hands the precomputation grids' storage to `buffers` for a rebuilt matcher; this one must
+  // not match afterwards.
+  void ReleaseGridsInto(PrecomputationBuffers* buffers) { grids_.ReleaseInto(buffers); }
 
  private:
   // The rotated, discretised scans of one search, with each one's cell bounding box.

@@ -101,6 +101,8 @@ class InitialMatcher2D {
   int cached_num_range_data_ = 0;
   std::unique_ptr<FastCorrelativeScanMatcher2D> matcher_;
   std::unique_ptr<FastCorrelativeScanMatcher2D> local_matcher_;  // if min_score_gain > 0
+  // The previous grids' storage, which each rebuild reuses.
+  PrecomputationBuffers buffers_;
   int num_precomputations_ = 0;
 };
 

@@ -18,6 +18,22 @@ uint8_t ProbabilityToPrecomputationValue(float probability);
 // units. Strictly increasing in value_sum.
 double PrecomputationScore(long value_sum, int num_points);
 
+// Storage a rebuilt PrecomputationGridStack2D reuses. Local SLAM's wide search
+// (InitialMatcher2D) rebuilds its stack after every insertion, megabytes for an open hall's
+// submap: fresh allocations each time spent as long faulting in and zeroing pages as the
+// stack's own arithmetic (orebro).
+class PrecomputationBuffers {
+ public:
+  // A vector of `size` elements with unspecified values: the smallest buffer at hand that
+  // holds `size` without growing, else the largest grown, else a new one.
+  std::vector<uint8_t> Take(size_t size);
+  void Give(std::vector<uint8_t> buffer);
+  size_t count() const { return buffers_.size(); }
+
+ private:
+  std::vector<std::vector<uint8_t>> buffers_;
+};
+
 // One level of the branch-and-bound pyramid (Hess et al. 2016, Sec. V-C, eq. 14). For width
 // w = 2^depth, GetValue(c) must bound the quantised probabilities over the base-grid cells
 // c + [0, w) x [0, w) (0 off the grid) from above; branch and bound stays exact with any such
@@ -54,7 +70,9 @@ class PrecomputationGrid2D {
   friend class PrecomputationGridStack2D;
   // Values for blocks min_block .. min_block + size - 1 (per axis) of 2^block_shift cells.
   PrecomputationGrid2D(int width_cells, int block_shift, const Eigen::Array2i& min_block,
-                       int size_x, int size_y);
+                       int size_x, int size_y, std::vector<uint8_t> values);
+  // Depth 0 in `values` (resized).
+  PrecomputationGrid2D(const ProbabilityGrid& grid, std::vector<uint8_t> values);
 
   int width_cells_;
   int block_shift_;
@@ -67,7 +85,14 @@ class PrecomputationGrid2D {
 // Precomputation grids for depths 0 .. max_depth.
 class PrecomputationGridStack2D {
  public:
-  PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth);
+  // With `buffers`, built in their storage (the values are the same either way) and its
+  // scratch handed back to them.
+  PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,
+                            PrecomputationBuffers* buffers = nullptr);
+
+  // Hands every depth's storage to `buffers` for the next stack; this one is left empty
+  // (max_depth() -1) and must not be matched against.
+  void ReleaseInto(PrecomputationBuffers* buffers);
 
   const PrecomputationGrid2D& Get(int depth) const { return grids_.at(depth); }
   int max_depth() const { return static_cast<int>(grids_.size()) - 1; }
