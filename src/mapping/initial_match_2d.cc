@@ -14,7 +14,7 @@ InitialMatchOptions2D::InitialMatchOptions2D() {
   // the real-time one (config/default.yaml).
   fast_correlative_scan_matcher.linear_search_window_m = 0.5;
   fast_correlative_scan_matcher.angular_search_window_rad = 0.5;
-  fast_correlative_scan_matcher.branch_and_bound_depth = 4;
+  fast_correlative_scan_matcher.branch_and_bound_depth = 2;  // see config/default.yaml
   // Low: the real-time match started from the answer decides whether it is taken.
   fast_correlative_scan_matcher.min_score = 0.2;
   // Of two offsets that score alike (a corridor), the nearer the prediction.
