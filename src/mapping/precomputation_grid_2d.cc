@@ -238,7 +238,6 @@ PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid
   };
   // Block maxima for the blocked depths, halved from the base grid one depth after another.
   Plane blocks;
-  bool blocks_built = false;
   for (int depth = 1; depth <= max_depth; ++depth) {
     const int width = 1 << depth;
     Plane level;
@@ -248,10 +247,10 @@ PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid
       level = MaxOfStrided(view(grids_.back()), 2, width / 2, buffers);
     } else {
       block_shift = depth - kExactDepths;
-      Plane halved = HalveByMax(blocks_built ? View(blocks) : view(grids_.front()), buffers);
+      const bool first_blocked = depth == kExactDepths + 1;
+      Plane halved = HalveByMax(first_blocked ? view(grids_.front()) : View(blocks), buffers);
       GiveBuffer(buffers, std::move(blocks.values));
       blocks = std::move(halved);
-      blocks_built = true;
       // A window of w starting anywhere in a block reaches this many blocks.
       const int block = 1 << block_shift;
       level = MaxOfStrided(View(blocks), (width - 1 + block - 1) / block + 1, 1, buffers);
