@@ -63,6 +63,38 @@ TEST(ScanInformation2DTest, ARingCorridorSlidesRoundItsCentreAndTurnsWithIt) {
   EXPECT_NEAR(forward_turn_rad_per_m, 1.0 / 7.0, 0.01);
 }
 
+TEST(ScanInformation2DTest, AGentlyCurvedCorridorTurnsWithItToo) {
+  // Radius 25 m: a turn of 0.04 rad per metre, which a threshold on the turn itself (0.05)
+  // took for a straight corridor, so a match slid 3 m along kept a heading 7 degrees off.
+  const sensor::PointCloud2d cloud =
+      LoopClosureCloud(test_world::RingCorridorWalls(24.0, 26.0), test_world::RingPose(25.0, 0.3));
+  ASSERT_GE(cloud.size(), 100u);
+  const ScanInformation2D info = ComputeScanInformation2D(cloud);
+  EXPECT_LT(info.TranslationRatio(), 0.02);
+  EXPECT_GT(std::abs(info.weakest_direction.x()), 0.99);
+  const double forward_turn_rad_per_m =
+      info.weakest_direction.x() > 0.0 ? info.weakest_turn_rad_per_m : -info.weakest_turn_rad_per_m;
+  EXPECT_NEAR(forward_turn_rad_per_m, 1.0 / 25.0, 0.004);
+}
+
+TEST(ScanInformation2DTest, DoorFramesAlongAStraightCorridorDoNotMakeItTurn) {
+  // The corridor's north wall has a 1 m door every 3 m, each with 0.3 m jambs: a few points off
+  // the two long lines, on one side only.
+  std::vector<Segment> walls = {{Eigen::Vector2d(-20.0, -1.0), Eigen::Vector2d(20.0, -1.0)}};
+  for (int k = -7; k < 7; ++k) {
+    const double door_start = 3.0 * k;
+    const double door_end = door_start + 1.0;
+    walls.push_back({Eigen::Vector2d(door_end, 1.0), Eigen::Vector2d(door_start + 3.0, 1.0)});
+    walls.push_back({Eigen::Vector2d(door_start, 1.0), Eigen::Vector2d(door_start, 1.3)});
+    walls.push_back({Eigen::Vector2d(door_end, 1.0), Eigen::Vector2d(door_end, 1.3)});
+  }
+  for (const double x_m : {-0.7, 0.2, 1.1}) {
+    const ScanInformation2D info =
+        ComputeScanInformation2D(LoopClosureCloud(walls, common::Rigid2d(x_m, 0.1, 0.05)));
+    EXPECT_EQ(info.weakest_turn_rad_per_m, 0.0) << "at x " << x_m;
+  }
+}
+
 TEST(ScanInformation2DTest, ARoomHoldsAMatchEveryWay) {
   const sensor::PointCloud2d cloud =
       LoopClosureCloud(test_world::SmallRoomWalls(), common::Rigid2d(-1.0, -0.5, 0.3));

@@ -28,8 +28,9 @@ struct ScanInformation2D {
   Eigen::Vector2d weakest_direction = Eigen::Vector2d::UnitX();
   // The turn that goes with a slide along weakest_direction at least cost, in rad per metre of
   // it: 0 along a straight corridor, about 1/r along a curved wall of radius r (a ring
-  // corridor), where a match slides round the curve and turns with it. Turns below 0.05 rad/m
-  // (a radius above 20 m) are taken as 0.
+  // corridor), where a match slides round the curve and turns with it. 0 unless turning takes
+  // away nearly all that the slide costs without it (a straight corridor's door frames suggest
+  // a small turn that explains little).
   double weakest_turn_rad_per_m = 0.0;
   // Points whose neighbours lie on a line, i.e. that contribute.
   int points_on_lines = 0;
