@@ -48,33 +48,31 @@ TEST(ScanInformation2DTest, ACorridorHoldsAMatchAcrossItButNotAlongIt) {
   EXPECT_EQ(info.weakest_turn_rad_per_m, 0.0);
 }
 
-TEST(ScanInformation2DTest, ARingCorridorSlidesRoundItsCentreAndTurnsWithIt) {
-  // Radius 7 m between walls at 6 and 8 m, facing along the ring: every point of it looks the
-  // same, so a match slides round the centre, turning 1/7 rad per metre.
-  const sensor::PointCloud2d cloud =
-      LoopClosureCloud(test_world::RingCorridorWalls(6.0, 8.0), test_world::RingPose(7.0, 0.3));
-  ASSERT_GE(cloud.size(), 100u);
+// The turn per metre forward round a ring corridor between walls of radius inner_m and
+// outer_m, as a scan on the circle of radius_m facing along it measures it. Every point of the
+// ring looks the same, so the scan holds a match across the ring only.
+double ForwardTurnRoundRing(double inner_m, double outer_m, double radius_m) {
+  const sensor::PointCloud2d cloud = LoopClosureCloud(
+      test_world::RingCorridorWalls(inner_m, outer_m), test_world::RingPose(radius_m, 0.3));
+  EXPECT_GE(cloud.size(), 100u);
   const ScanInformation2D info = ComputeScanInformation2D(cloud);
   EXPECT_LT(info.TranslationRatio(), 0.01);
   // Along the ring is the scan's x axis; forward round it (anticlockwise) turns left.
   EXPECT_GT(std::abs(info.weakest_direction.x()), 0.99);
-  const double forward_turn_rad_per_m =
-      info.weakest_direction.x() > 0.0 ? info.weakest_turn_rad_per_m : -info.weakest_turn_rad_per_m;
-  EXPECT_NEAR(forward_turn_rad_per_m, 1.0 / 7.0, 0.01);
+  return info.weakest_direction.x() > 0.0 ? info.weakest_turn_rad_per_m
+                                          : -info.weakest_turn_rad_per_m;
+}
+
+TEST(ScanInformation2DTest, ARingCorridorSlidesRoundItsCentreAndTurnsWithIt) {
+  // Radius 7 m between walls at 6 and 8 m: a match slides round the centre, turning 1/7 rad
+  // per metre.
+  EXPECT_NEAR(ForwardTurnRoundRing(6.0, 8.0, 7.0), 1.0 / 7.0, 0.01);
 }
 
 TEST(ScanInformation2DTest, AGentlyCurvedCorridorTurnsWithItToo) {
   // Radius 25 m: a turn of 0.04 rad per metre, which a threshold on the turn itself (0.05)
   // took for a straight corridor, so a match slid 3 m along kept a heading 7 degrees off.
-  const sensor::PointCloud2d cloud =
-      LoopClosureCloud(test_world::RingCorridorWalls(24.0, 26.0), test_world::RingPose(25.0, 0.3));
-  ASSERT_GE(cloud.size(), 100u);
-  const ScanInformation2D info = ComputeScanInformation2D(cloud);
-  EXPECT_LT(info.TranslationRatio(), 0.02);
-  EXPECT_GT(std::abs(info.weakest_direction.x()), 0.99);
-  const double forward_turn_rad_per_m =
-      info.weakest_direction.x() > 0.0 ? info.weakest_turn_rad_per_m : -info.weakest_turn_rad_per_m;
-  EXPECT_NEAR(forward_turn_rad_per_m, 1.0 / 25.0, 0.004);
+  EXPECT_NEAR(ForwardTurnRoundRing(24.0, 26.0, 25.0), 1.0 / 25.0, 0.004);
 }
 
 TEST(ScanInformation2DTest, DoorFramesAlongAStraightCorridorDoNotMakeItTurn) {
