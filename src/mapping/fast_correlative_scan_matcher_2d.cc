@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
+#include <utility>
 
 namespace fusemap {
 namespace mapping {
@@ -46,6 +47,16 @@ FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
       grids_(grid, options.branch_and_bound_depth, buffers) {
   std::string error;
   assert(options_.IsValid(&error));
+  (void)error;
+}
+
+FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
+    const MapLimits& limits, PrecomputationGridStack2D grids,
+    const FastCorrelativeScanMatcherOptions2D& options)
+    : limits_(limits), options_(options), grids_(std::move(grids)) {
+  std::string error;
+  assert(options_.IsValid(&error));
+  assert(grids_.max_depth() == options_.branch_and_bound_depth);
   (void)error;
 }
 
@@ -127,8 +138,9 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
       ComputeLowestResolutionCandidates(scans, params, with_prior);
   // With a prior, the threshold is on the match itself: the prior only chooses among matches,
   // so a good match far from the centre is not rejected for being far.
-  Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
-                                    grids_.max_depth(), with_prior ? 0.0 : min_score, with_prior);
+  std::vector<std::vector<Candidate2D>> children_by_depth(grids_.max_depth());
+  Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(),
+                                    with_prior ? 0.0 : min_score, with_prior, &children_by_depth);
   if (with_prior) {
     std::vector<Candidate2D> leaf = {best};
     ScoreCandidates(grids_.Get(0), scans, false, &leaf);
@@ -145,6 +157,13 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
     const ScanSet& scans, const SearchParameters& params, bool with_prior) const {
   const int step = grids_.Get(grids_.max_depth()).width_cells();
   std::vector<Candidate2D> candidates;
+  size_t count = 0;
+  for (const SearchParameters::LinearBounds& bounds : params.linear_bounds) {
+    if (bounds.max_x < bounds.min_x || bounds.max_y < bounds.min_y) continue;
+    count += static_cast<size_t>((bounds.max_x - bounds.min_x) / step + 1) *
+             ((bounds.max_y - bounds.min_y) / step + 1);
+  }
+  candidates.reserve(count);  // thousands per local SLAM wide search
   for (int i = 0; i < params.num_scans; ++i) {
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
     for (int x = bounds.min_x; x <= bounds.max_x; x += step) {
@@ -175,9 +194,12 @@ void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& g
     // largest at the one nearest the centre, so score times that factor still bounds every
     // leaf below it and the search stays exact.
     const int width = grid.width_cells();
+    // sqrt of the exact integer sum, not std::hypot: the same distance (correctly rounded)
+    // at a fraction of the cost, and this runs for every candidate of local SLAM's wide search.
+    const long nx = nearest_cells(candidate.x_offset_cells, width);
+    const long ny = nearest_cells(candidate.y_offset_cells, width);
     const double distance_m =
-        limits_.resolution_m * std::hypot(nearest_cells(candidate.x_offset_cells, width),
-                                          nearest_cells(candidate.y_offset_cells, width));
+        limits_.resolution_m * std::sqrt(static_cast<double>(nx * nx + ny * ny));
     const double cost = distance_m * options_.translation_delta_cost_weight +
                         std::abs(candidate.angle_rad) * options_.rotation_delta_cost_weight;
     candidate.score *= std::exp(-cost * cost);
@@ -190,8 +212,8 @@ void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& g
 // (eq. 14), so a subtree whose bound does not beat the best leaf found so far is skipped.
 Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     const ScanSet& scans, const SearchParameters& params,
-    const std::vector<Candidate2D>& candidates, int depth, double min_score,
-    bool with_prior) const {
+    const std::vector<Candidate2D>& candidates, int depth, double min_score, bool with_prior,
+    std::vector<std::vector<Candidate2D>>* children_by_depth) const {
   if (depth == 0) return candidates.front();  // sorted best first, never empty
   Candidate2D best(0, 0, 0, params);
   best.score = min_score;
@@ -199,7 +221,9 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
   for (const Candidate2D& candidate : candidates) {
     if (candidate.score <= best.score) break;
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[candidate.scan_index];
-    std::vector<Candidate2D> children;
+    // Reused storage: thousands of candidates are expanded per search.
+    std::vector<Candidate2D>& children = (*children_by_depth)[depth - 1];
+    children.clear();
     for (int dx : {0, half_width}) {
       if (candidate.x_offset_cells + dx > bounds.max_x) break;
       for (int dy : {0, half_width}) {
@@ -209,8 +233,8 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
       }
     }
     ScoreCandidates(grids_.Get(depth - 1), scans, with_prior, &children);
-    const Candidate2D child_best =
-        BranchAndBound(scans, params, children, depth - 1, best.score, with_prior);
+    const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score,
+                                                  with_prior, children_by_depth);
     if (child_best.score > best.score) best = child_best;
   }
   return best;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -69,22 +70,45 @@ InitialMatchOptions2D ParseInitialMatchOptions2D(common::ConfigReader& reader) {
   return options;
 }
 
-ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unknown_probability,
-                            int pad_cells) {
+namespace {
+
+// Where MaxPoolGrid's result lies: `fine` is the known part of the grid (from known_min),
+// `coarse` the result.
+struct PoolLayout {
+  Eigen::Array2i known_min;
+  MapLimits fine;
+  MapLimits coarse;
+};
+
+PoolLayout ComputePoolLayout(const ProbabilityGrid& grid, int factor, int pad_cells) {
   assert(factor >= 1 && pad_cells >= 0);
+  PoolLayout layout;
   // The known part of `grid`, read in place (local SLAM's submap grows to several times it).
-  Eigen::Array2i known_min = Eigen::Array2i::Zero();
+  layout.known_min = Eigen::Array2i::Zero();
   Eigen::Array2i known_max(grid.limits().num_x_cells - 1, grid.limits().num_y_cells - 1);
-  grid.ComputeKnownBounds(&known_min, &known_max);
-  MapLimits fine = grid.limits();
-  fine.origin_m += fine.resolution_m * known_min.cast<double>().matrix();
-  fine.num_x_cells = known_max.x() - known_min.x() + 1;
-  fine.num_y_cells = known_max.y() - known_min.y() + 1;
-  MapLimits coarse = fine;
+  grid.ComputeKnownBounds(&layout.known_min, &known_max);
+  MapLimits& fine = layout.fine;
+  fine = grid.limits();
+  fine.origin_m += fine.resolution_m * layout.known_min.cast<double>().matrix();
+  fine.num_x_cells = known_max.x() - layout.known_min.x() + 1;
+  fine.num_y_cells = known_max.y() - layout.known_min.y() + 1;
+  MapLimits& coarse = layout.coarse;
+  coarse = fine;
   coarse.resolution_m = fine.resolution_m * factor;
   coarse.origin_m -= Eigen::Vector2d::Constant(pad_cells * coarse.resolution_m);
   coarse.num_x_cells = (fine.num_x_cells + factor - 1) / factor + 2 * pad_cells;
   coarse.num_y_cells = (fine.num_y_cells + factor - 1) / factor + 2 * pad_cells;
+  return layout;
+}
+
+}  // namespace
+
+ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unknown_probability,
+                            int pad_cells) {
+  const PoolLayout layout = ComputePoolLayout(grid, factor, pad_cells);
+  const Eigen::Array2i& known_min = layout.known_min;
+  const MapLimits& fine = layout.fine;
+  const MapLimits& coarse = layout.coarse;
   // Cell values increase with probability and kUnknownValue is 0, so the maximum value is the
   // most likely occupied known cell, or unknown if none is known.
   std::vector<uint16_t> cells(static_cast<size_t>(coarse.num_x_cells) * coarse.num_y_cells,
@@ -139,12 +163,32 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
         options_.unknown_probability > kMinProbability
             ? static_cast<int>(std::ceil(options_.unknown_padding_m / coarse_resolution_m))
             : 0;
-    const ProbabilityGrid coarse =
-        MaxPoolGrid(*grid, factor, options_.unknown_probability, pad_cells);
     if (matcher_ != nullptr) matcher_->ReleaseGridsInto(&buffers_);
     if (local_matcher_ != nullptr) local_matcher_->ReleaseGridsInto(&buffers_);
-    matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(
-        coarse, options_.fast_correlative_scan_matcher, &buffers_);
+    // At the submap's own resolution (the default) the stacks are built from the submap's
+    // grid in place: the same values as from MaxPoolGrid's copy, which cost as much as the
+    // stacks themselves (orebro).
+    std::optional<ProbabilityGrid> pooled;
+    MapLimits limits;
+    CellBox box;
+    if (factor == 1) {
+      const PoolLayout layout = ComputePoolLayout(*grid, 1, pad_cells);
+      limits = layout.coarse;
+      box = CellBox{layout.known_min - pad_cells, limits.num_x_cells, limits.num_y_cells};
+    } else {
+      pooled.emplace(MaxPoolGrid(*grid, factor, options_.unknown_probability, pad_cells));
+      limits = pooled->limits();
+      box = CellBox{Eigen::Array2i::Zero(), limits.num_x_cells, limits.num_y_cells};
+    }
+    const ProbabilityGrid& source = pooled.has_value() ? *pooled : *grid;
+    const auto make_matcher = [&](const FastCorrelativeScanMatcherOptions2D& options) {
+      return std::make_unique<FastCorrelativeScanMatcher2D>(
+          limits,
+          PrecomputationGridStack2D(source, box, options_.unknown_probability,
+                                    options.branch_and_bound_depth, &buffers_),
+          options);
+    };
+    matcher_ = make_matcher(options_.fast_correlative_scan_matcher);
     if (options_.min_score_gain > 0.0) {
       FastCorrelativeScanMatcherOptions2D local;
       local.linear_search_window_m = options_.near_linear_search_window_m;
@@ -154,7 +198,7 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
           options_.fast_correlative_scan_matcher.translation_delta_cost_weight;
       local.rotation_delta_cost_weight =
           options_.fast_correlative_scan_matcher.rotation_delta_cost_weight;
-      local_matcher_ = std::make_unique<FastCorrelativeScanMatcher2D>(coarse, local, &buffers_);
+      local_matcher_ = make_matcher(local);
     }
     cached_submap_ = submap;
     cached_num_range_data_ = submap->num_range_data();

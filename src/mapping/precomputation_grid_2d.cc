@@ -14,12 +14,6 @@ uint8_t ProbabilityToPrecomputationValue(float probability) {
       std::lround((p - kMinProbability) * (kMaxPrecomputationValue / (kMaxProbability - kMinProbability))));
 }
 
-double PrecomputationScore(long value_sum, int num_points) {
-  assert(num_points > 0);
-  return kMinProbability + (kMaxProbability - kMinProbability) * static_cast<double>(value_sum) /
-                               (static_cast<double>(kMaxPrecomputationValue) * num_points);
-}
-
 namespace {
 
 // Depths up to this one are stored exactly (one byte per cell each); deeper ones in blocks of
@@ -170,14 +164,18 @@ PrecomputationGrid2D::PrecomputationGrid2D(int width_cells, int block_shift,
 }
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
-    : PrecomputationGrid2D(grid, std::vector<uint8_t>()) {}
+    : PrecomputationGrid2D(
+          grid,
+          CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells},
+          kMinProbability, std::vector<uint8_t>()) {}
 
-PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, std::vector<uint8_t> values)
+PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box,
+                                           float unknown_probability, std::vector<uint8_t> values)
     : width_cells_(1),
       block_shift_(0),
       min_block_(Eigen::Array2i::Zero()),
-      size_x_(grid.limits().num_x_cells),
-      size_y_(grid.limits().num_y_cells),
+      size_x_(box.num_x_cells),
+      size_y_(box.num_y_cells),
       values_(std::move(values)) {
   values_.resize(static_cast<size_t>(size_x_) * size_y_);
   const std::vector<uint16_t>& cells = grid.cells();
@@ -187,8 +185,28 @@ PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, std::vec
   for (int value = 0; value <= kMaxValue; ++value) {
     table[value] = ProbabilityToPrecomputationValue(ValueToProbability(static_cast<uint16_t>(value)));
   }
-  for (size_t i = 0; i < values_.size(); ++i) {
-    values_[i] = table[cells[i] & static_cast<uint16_t>(~kUpdateMarker)];
+  if (unknown_probability > kMinProbability) {
+    table[kUnknownValue] = table[ProbabilityToValue(unknown_probability)];
+  }
+  const uint8_t unknown = table[kUnknownValue];
+  const int grid_size_x = grid.limits().num_x_cells;
+  const int grid_size_y = grid.limits().num_y_cells;
+  // The box's columns that lie on the grid: [first_x, end_x) in box coordinates.
+  const int first_x = std::clamp(-box.min_cell.x(), 0, size_x_);
+  const int end_x = std::clamp(grid_size_x - box.min_cell.x(), first_x, size_x_);
+  for (int y = 0; y < size_y_; ++y) {
+    uint8_t* const row = values_.data() + static_cast<size_t>(y) * size_x_;
+    const int grid_y = box.min_cell.y() + y;
+    if (grid_y < 0 || grid_y >= grid_size_y) {
+      std::fill_n(row, size_x_, unknown);
+      continue;
+    }
+    std::fill_n(row, first_x, unknown);
+    const uint16_t* const grid_row = cells.data() + static_cast<size_t>(grid_y) * grid_size_x;
+    for (int x = first_x; x < end_x; ++x) {
+      row[x] = table[grid_row[box.min_cell.x() + x] & static_cast<uint16_t>(~kUpdateMarker)];
+    }
+    std::fill(row + end_x, row + size_x_, unknown);
   }
 }
 
@@ -226,13 +244,22 @@ long PrecomputationGrid2D::SumValues(const std::vector<Eigen::Array2i>& cells,
 }
 
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,
+                                                     PrecomputationBuffers* buffers)
+    : PrecomputationGridStack2D(
+          grid,
+          CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells},
+          kMinProbability, max_depth, buffers) {}
+
+PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid,
+                                                     const CellBox& box, float unknown_probability,
+                                                     int max_depth,
                                                      PrecomputationBuffers* buffers) {
-  assert(max_depth >= 0);
+  assert(max_depth >= 0 && box.num_x_cells >= 0 && box.num_y_cells >= 0);
   // Reserved: the levels are read in place (PlaneView) while the next one is built.
   grids_.reserve(max_depth + 1);
   grids_.push_back(PrecomputationGrid2D(
-      grid, TakeBuffer(buffers, static_cast<size_t>(grid.limits().num_x_cells) *
-                                    grid.limits().num_y_cells)));
+      grid, box, unknown_probability,
+      TakeBuffer(buffers, static_cast<size_t>(box.num_x_cells) * box.num_y_cells)));
   const auto view = [](const PrecomputationGrid2D& level) {
     return PlaneView{level.min_block_, level.size_x_, level.size_y_, level.values_.data()};
   };

@@ -189,6 +189,54 @@ TEST(PrecomputationGridStack2DTest, RecycledStorageGivesTheSameValues) {
   EXPECT_GT(buffers_after_first_round, 0u);
 }
 
+// A stack over a box of a grid (InitialMatcher2D's, over the known part of the submap plus
+// padding) holds exactly the values of a stack over that box copied into a grid of its own,
+// the box's unknown and off-grid cells set to the unknown probability, at every depth; with
+// the unknown probability at kMinProbability, the grid's own unknown cells stay as they are.
+TEST(PrecomputationGridStack2DTest, StackOverABoxEqualsStackOverItsCopy) {
+  const ProbabilityGrid grid = MakeRandomGrid(41, 29, 11);
+  struct Case {
+    CellBox box;
+    float unknown_probability;
+  };
+  const std::vector<Case> cases = {
+      {CellBox{Eigen::Array2i(-6, -4), 53, 40}, 0.5f},            // past every side
+      {CellBox{Eigen::Array2i(5, 3), 20, 11}, 0.5f},              // inside
+      {CellBox{Eigen::Array2i(30, -2), 25, 9}, kMinProbability},  // past two sides
+      {CellBox{Eigen::Array2i(50, 40), 4, 3}, 0.6f},              // off the grid
+  };
+  for (const Case& c : cases) {
+    MapLimits limits;
+    limits.num_x_cells = c.box.num_x_cells;
+    limits.num_y_cells = c.box.num_y_cells;
+    ProbabilityGrid copy(limits);
+    for (int y = 0; y < limits.num_y_cells; ++y) {
+      for (int x = 0; x < limits.num_x_cells; ++x) {
+        const Eigen::Array2i cell = c.box.min_cell + Eigen::Array2i(x, y);
+        const bool known = grid.limits().Contains(cell) && grid.IsKnown(cell);
+        if (known) {
+          copy.SetProbability(Eigen::Array2i(x, y), grid.GetProbability(cell));
+        } else if (c.unknown_probability > kMinProbability) {
+          copy.SetProbability(Eigen::Array2i(x, y), c.unknown_probability);
+        }
+      }
+    }
+    const PrecomputationGridStack2D from_box(grid, c.box, c.unknown_probability, 3);
+    const PrecomputationGridStack2D from_copy(copy, 3);
+    ASSERT_EQ(from_box.max_depth(), 3);
+    for (int depth = 0; depth <= 3; ++depth) {
+      for (int y = -10; y < limits.num_y_cells + 2; ++y) {
+        for (int x = -10; x < limits.num_x_cells + 2; ++x) {
+          const Eigen::Array2i cell(x, y);
+          ASSERT_EQ(from_box.Get(depth).GetValue(cell), from_copy.Get(depth).GetValue(cell))
+              << "box at " << c.box.min_cell.transpose() << " depth " << depth << " cell " << x
+              << "," << y;
+        }
+      }
+    }
+  }
+}
+
 // Take hands out the smallest buffer that holds the size, else the largest, grown.
 TEST(PrecomputationBuffersTest, TakesTheSmallestThatFitsElseTheLargest) {
   PrecomputationBuffers buffers;

@@ -51,6 +51,9 @@ class FastCorrelativeScanMatcher2D {
   FastCorrelativeScanMatcher2D(const ProbabilityGrid& grid,
                                const FastCorrelativeScanMatcherOptions2D& options,
                                PrecomputationBuffers* buffers = nullptr);
+  // Over precomputation grids built by the caller, whose cell 0 is `limits`' cell 0.
+  FastCorrelativeScanMatcher2D(const MapLimits& limits, PrecomputationGridStack2D grids,
+                               const FastCorrelativeScanMatcherOptions2D& options);
 
   FastCorrelativeScanMatcher2D(const FastCorrelativeScanMatcher2D&) = delete;
   FastCorrelativeScanMatcher2D& operator=(const FastCorrelativeScanMatcher2D&) = delete;
@@ -92,10 +95,11 @@ class FastCorrelativeScanMatcher2D {
       const ScanSet& scans, const SearchParameters& params, bool with_prior) const;
   void ScoreCandidates(const PrecomputationGrid2D& grid, const ScanSet& scans, bool with_prior,
                        std::vector<Candidate2D>* candidates) const;
-  Candidate2D BranchAndBound(const ScanSet& scans,
-                             const SearchParameters& params,
+  // (*children_by_depth)[d] holds the children scored at depth d (one expansion at a time).
+  Candidate2D BranchAndBound(const ScanSet& scans, const SearchParameters& params,
                              const std::vector<Candidate2D>& candidates, int depth,
-                             double min_score, bool with_prior) const;
+                             double min_score, bool with_prior,
+                             std::vector<std::vector<Candidate2D>>* children_by_depth) const;
 
   MapLimits limits_;
   FastCorrelativeScanMatcherOptions2D options_;

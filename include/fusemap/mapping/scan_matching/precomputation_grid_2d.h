@@ -2,6 +2,7 @@
 #define FUSEMAP_MAPPING_SCAN_MATCHING_PRECOMPUTATION_GRID_2D_H_
 
 #include <Eigen/Core>
+#include <cassert>
 #include <cstdint>
 #include <vector>
 
@@ -15,8 +16,12 @@ namespace mapping {
 constexpr int kMaxPrecomputationValue = 255;
 uint8_t ProbabilityToPrecomputationValue(float probability);
 // Mean score of a candidate whose `num_points` values sum to `value_sum`, back in probability
-// units. Strictly increasing in value_sum.
-double PrecomputationScore(long value_sum, int num_points);
+// units. Strictly increasing in value_sum. Inline: branch and bound scores every candidate.
+inline double PrecomputationScore(long value_sum, int num_points) {
+  assert(num_points > 0);
+  return kMinProbability + (kMaxProbability - kMinProbability) * static_cast<double>(value_sum) /
+                               (static_cast<double>(kMaxPrecomputationValue) * num_points);
+}
 
 // Storage a rebuilt PrecomputationGridStack2D reuses. Local SLAM's wide search
 // (InitialMatcher2D) rebuilds its stack after every insertion, megabytes for an open hall's
@@ -32,6 +37,14 @@ class PrecomputationBuffers {
 
  private:
   std::vector<std::vector<uint8_t>> buffers_;
+};
+
+// Cells min_cell + [0, num_x_cells) x [0, num_y_cells) of a grid; the box may reach past the
+// grid.
+struct CellBox {
+  Eigen::Array2i min_cell = Eigen::Array2i::Zero();
+  int num_x_cells = 0;
+  int num_y_cells = 0;
 };
 
 // One level of the branch-and-bound pyramid (Hess et al. 2016, Sec. V-C, eq. 14). For width
@@ -71,8 +84,9 @@ class PrecomputationGrid2D {
   // Values for blocks min_block .. min_block + size - 1 (per axis) of 2^block_shift cells.
   PrecomputationGrid2D(int width_cells, int block_shift, const Eigen::Array2i& min_block,
                        int size_x, int size_y, std::vector<uint8_t> values);
-  // Depth 0 in `values` (resized).
-  PrecomputationGrid2D(const ProbabilityGrid& grid, std::vector<uint8_t> values);
+  // Depth 0 over `box` of `grid`, in `values` (resized).
+  PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box, float unknown_probability,
+                       std::vector<uint8_t> values);
 
   int width_cells_;
   int block_shift_;
@@ -88,6 +102,14 @@ class PrecomputationGridStack2D {
   // With `buffers`, built in their storage (the values are the same either way) and its
   // scratch handed back to them.
   PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,
+                            PrecomputationBuffers* buffers = nullptr);
+  // Over `box` of `grid` only, its cell min_cell being the stack's cell 0. Cells the grid has
+  // never observed, or that lie off it, score as `unknown_probability` where that is above
+  // kMinProbability (else as the grid's own unknown cells). The same stack as one built over
+  // the box copied into a grid of its own, without that copy: local SLAM's wide search
+  // rebuilds its stack over the known part of the growing submap after every insertion.
+  PrecomputationGridStack2D(const ProbabilityGrid& grid, const CellBox& box,
+                            float unknown_probability, int max_depth,
                             PrecomputationBuffers* buffers = nullptr);
 
   // Hands every depth's storage to `buffers` for the next stack; this one is left empty
