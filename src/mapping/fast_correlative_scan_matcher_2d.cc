@@ -42,13 +42,9 @@ FastCorrelativeScanMatcherOptions2D ParseFastCorrelativeScanMatcherOptions2D(
 FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
     const ProbabilityGrid& grid, const FastCorrelativeScanMatcherOptions2D& options,
     PrecomputationBuffers* buffers)
-    : limits_(grid.limits()),
-      options_(options),
-      grids_(grid, options.branch_and_bound_depth, buffers) {
-  std::string error;
-  assert(options_.IsValid(&error));
-  (void)error;
-}
+    : FastCorrelativeScanMatcher2D(
+          grid.limits(), PrecomputationGridStack2D(grid, options.branch_and_bound_depth, buffers),
+          options) {}
 
 FastCorrelativeScanMatcher2D::FastCorrelativeScanMatcher2D(
     const MapLimits& limits, PrecomputationGridStack2D grids,

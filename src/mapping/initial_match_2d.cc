@@ -113,20 +113,15 @@ ProbabilityGrid MaxPoolGrid(const ProbabilityGrid& grid, int factor, float unkno
   // most likely occupied known cell, or unknown if none is known.
   std::vector<uint16_t> cells(static_cast<size_t>(coarse.num_x_cells) * coarse.num_y_cells,
                               kUnknownValue);
-  // Rows read in place (as grid.GetValue): this runs on every wide search, over the whole
-  // known part of the submap.
+  // Rows read in place (as grid.GetValue): with a coarser matching_resolution_m this runs on
+  // every wide search, over the whole known part of the submap. (At the submap's own
+  // resolution InitialMatcher2D reads the submap itself and does not call this.)
   constexpr uint16_t kValueMask = static_cast<uint16_t>(~kUpdateMarker);
   for (int y = 0; y < fine.num_y_cells; ++y) {
     const uint16_t* const fine_row =
         grid.cells().data() + grid.limits().FlatIndex(Eigen::Array2i(0, y) + known_min);
     uint16_t* const coarse_row =
         cells.data() + coarse.FlatIndex(Eigen::Array2i(pad_cells, y / factor + pad_cells));
-    if (factor == 1) {  // the default: a copy, without a division per cell
-      for (int x = 0; x < fine.num_x_cells; ++x) {
-        coarse_row[x] = std::max(coarse_row[x], static_cast<uint16_t>(fine_row[x] & kValueMask));
-      }
-      continue;
-    }
     for (int x = 0; x < fine.num_x_cells; ++x) {
       uint16_t& value = coarse_row[x / factor];
       value = std::max(value, static_cast<uint16_t>(fine_row[x] & kValueMask));

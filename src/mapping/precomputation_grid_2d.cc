@@ -29,6 +29,10 @@ void GiveBuffer(PrecomputationBuffers* buffers, std::vector<uint8_t> buffer) {
   if (buffers != nullptr) buffers->Give(std::move(buffer));
 }
 
+CellBox WholeGrid(const ProbabilityGrid& grid) {
+  return CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells};
+}
+
 // Values for indices [min, min + size) per axis, row-major; 0 elsewhere.
 struct Plane {
   Eigen::Array2i min = Eigen::Array2i::Zero();
@@ -164,10 +168,7 @@ PrecomputationGrid2D::PrecomputationGrid2D(int width_cells, int block_shift,
 }
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
-    : PrecomputationGrid2D(
-          grid,
-          CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells},
-          kMinProbability, std::vector<uint8_t>()) {}
+    : PrecomputationGrid2D(grid, WholeGrid(grid), kMinProbability, std::vector<uint8_t>()) {}
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box,
                                            float unknown_probability, std::vector<uint8_t> values)
@@ -245,10 +246,7 @@ long PrecomputationGrid2D::SumValues(const std::vector<Eigen::Array2i>& cells,
 
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,
                                                      PrecomputationBuffers* buffers)
-    : PrecomputationGridStack2D(
-          grid,
-          CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells},
-          kMinProbability, max_depth, buffers) {}
+    : PrecomputationGridStack2D(grid, WholeGrid(grid), kMinProbability, max_depth, buffers) {}
 
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid,
                                                      const CellBox& box, float unknown_probability,
