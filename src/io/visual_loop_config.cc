@@ -201,6 +201,7 @@ VisualLoopConfig ParseVisualLoopConfig(common::ConfigReader& reader) {
   motion_links.Get("rotation_weight", &config.motion_links.rotation_weight);
   motion_links.Get("max_disagreement_m", &config.motion_links.max_disagreement_m);
   motion_links.Get("max_disagreement_rad", &config.motion_links.max_disagreement_rad);
+  motion_links.Get("refine_on_pixels", &checker.refine_latest_on_pixels);
   motion_links.CheckOptions(MotionLinkRules{config.motion_links});
 
   reader.CheckOptions(config);

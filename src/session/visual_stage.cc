@@ -65,17 +65,18 @@ visual_loop::CameraFrame ToCameraFrame(const sensor::RgbdFrame& frame,
 }
 
 std::string VisualSummaryLine(const VisualStageStats& s) {
-  char line[480];
+  char line[640];
   std::snprintf(line, sizeof(line),
                 "visual_loop: keyframes=%d candidates=%d verified=%d refused=%d "
                 "laser_loops_checked=%d laser_confirmed=%d confirmed_along=%d visual_override=%d "
                 "visual_forced=%d laser_kept=%d laser_rejected=%d visual_rejected=%d "
-                "motion_links=%d motion_links_refused=%d frames_in=%lld frames_offered=%lld "
-                "frames_dropped=%lld",
+                "motion_links=%d motion_links_refused=%d motion_links_refined=%d frames_in=%lld "
+                "frames_offered=%lld frames_dropped=%lld",
                 s.checker.keyframes, s.checker.candidates, s.checker.verified, s.checker.rejected,
                 s.laser_loops_checked, s.confirmed, s.confirmed_along, s.overridden, s.forced,
                 s.kept, s.rejected, s.visual_rejected, s.motion_links, s.motion_links_refused,
-                static_cast<long long>(s.frames_in), static_cast<long long>(s.frames_offered),
+                s.motion_links_refined, static_cast<long long>(s.frames_in),
+                static_cast<long long>(s.frames_offered),
                 static_cast<long long>(s.frames_dropped_no_pose + s.frames_dropped_pending));
   return line;
 }
@@ -205,6 +206,7 @@ void VisualStage::LinkMotion(int id, const common::Rigid2d& T_local_base) {
   link.rotation_weight = config_.motion_links.rotation_weight;
   if (graph_->AddNodeLink(link)) {
     ++stats_.motion_links;
+    stats_.motion_links_refined += result.refined_on_pixels;
   } else {
     ++stats_.motion_links_refused;
   }

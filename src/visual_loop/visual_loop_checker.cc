@@ -4,17 +4,19 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+#include <opencv2/imgproc.hpp>
 
 namespace fusemap {
 namespace visual_loop {
 
 bool VisualLoopCheckerOptions::IsValid(std::string* error) const {
   if (!selector.IsValid(error) || !orb.IsValid(error) || !detector.IsValid(error) ||
-      !planar.IsValid(error)) {
+      !planar.IsValid(error) || !patch_alignment.IsValid(error)) {
     return false;
   }
   if (min_points_to_contradict < 1 || !(max_overlap_distance_m > 0.0) ||
-      !(max_overlap_yaw_rad > 0.0) || max_contradiction_inliers < 0) {
+      !(max_overlap_yaw_rad > 0.0) || max_contradiction_inliers < 0 ||
+      patch_alignment_min_points < 6) {
     *error = "visual loop checker: contradiction thresholds must be positive";
     return false;
   }
@@ -46,6 +48,17 @@ VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& fr
   keyframe.submap = submap;
   keyframe.stamp_s = frame.stamp_s;
   T_base_camera_[keyframe.id] = frame.T_base_camera;
+  if (options_.refine_latest_on_pixels) {
+    CameraImage& image = latest_images_[keyframe.id];
+    if (frame.image.channels() == 1) {
+      image.gray = frame.image.clone();
+    } else {
+      cv::cvtColor(frame.image, image.gray, cv::COLOR_BGR2GRAY);
+    }
+    image.depth_m = frame.depth_m.clone();
+    image.intrinsics = frame.intrinsics;
+    while (latest_images_.size() > 2) latest_images_.erase(latest_images_.begin());
+  }
   std::vector<PlaceCandidate> candidates;
   const std::optional<DetectedLoop> loop = detector_.Process(std::move(keyframe), &candidates);
   stats_.candidates += std::any_of(candidates.begin(), candidates.end(),
@@ -99,7 +112,16 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
     out.reason = "no such keyframe";
     return out;
   }
-  const VerificationResult result = VerifyKeyframes(*match, *query, options_.detector.verification);
+  VerificationResult result = VerifyKeyframes(*match, *query, options_.detector.verification);
+  const auto image_match = latest_images_.find(match_keyframe);
+  const auto image_query = latest_images_.find(query_keyframe);
+  if (image_match != latest_images_.end() && image_query != latest_images_.end()) {
+    out.aligned_points = RefineByPatchAlignment(*match, image_match->second, *query,
+                                                image_query->second, options_.patch_alignment,
+                                                options_.patch_alignment_min_points, &result);
+    out.refined_on_pixels =
+        result.verified && out.aligned_points >= options_.patch_alignment_min_points;
+  }
   std::string rejection;
   out.constraint = ToConstraint(*match, *query, result, &rejection);
   if (out.constraint) {
@@ -160,6 +182,7 @@ void VisualLoopChecker::RemoveSubmap(int submap) {
   for (int id : KeyframesOfSubmap(submap)) {
     detector_.Remove(id);
     T_base_camera_.erase(id);
+    latest_images_.erase(id);
   }
 }
 

@@ -31,17 +31,18 @@ TEST(VisualLoopConfigTest, OffByDefaultWithTheProjectVocabularyPath) {
 TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
   SlamConfig config;
   std::string error;
-  ASSERT_TRUE(Parse("visual_loop:\n"
-                    "  enabled: true\n"
-                    "  max_queue_frames: 4\n"
-                    "  keyframes: {min_translation_m: 0.5, max_features: 800}\n"
-                    "  recognition: {temporal_consistency: 1}\n"
-                    "  verification: {min_inliers: 40}\n"
-                    "  arbitration: {max_translation_disagreement_m: 0.2,\n"
-                    "                max_laser_explained_fraction: 0.7}\n"
-                    "  motion_links: {enabled: false, translation_weight: 5e4,\n"
-                    "                 max_disagreement_m: 0.1}\n",
-                    &config, &error))
+  ASSERT_TRUE(
+      Parse("visual_loop:\n"
+            "  enabled: true\n"
+            "  max_queue_frames: 4\n"
+            "  keyframes: {min_translation_m: 0.5, max_features: 800}\n"
+            "  recognition: {temporal_consistency: 1}\n"
+            "  verification: {min_inliers: 40}\n"
+            "  arbitration: {max_translation_disagreement_m: 0.2,\n"
+            "                max_laser_explained_fraction: 0.7}\n"
+            "  motion_links: {enabled: false, translation_weight: 5e4,\n"
+            "                 max_disagreement_m: 0.1, refine_on_pixels: false}\n",
+            &config, &error))
       << error;
   const VisualLoopConfig& v = config.visual_loop;
   ASSERT_NE(v.loaded_vocabulary, nullptr);
@@ -57,6 +58,8 @@ TEST(VisualLoopConfigTest, EnabledLoadsTheVocabularyRelativeToTheSourceTree) {
   EXPECT_EQ(v.motion_links.translation_weight, 5e4);
   EXPECT_EQ(v.motion_links.max_disagreement_m, 0.1);
   EXPECT_EQ(v.motion_links.max_disagreement_rad, MotionLinkOptions().max_disagreement_rad);
+  EXPECT_FALSE(v.checker.refine_latest_on_pixels);
+  EXPECT_TRUE(visual_loop::VisualLoopCheckerOptions().refine_latest_on_pixels);
   EXPECT_EQ(ResolveVocabularyPath("/abs/v.bin"), "/abs/v.bin");
   EXPECT_EQ(ResolveVocabularyPath("data/v.bin"), std::string(FUSEMAP_SOURCE_DIR) + "/data/v.bin");
 }

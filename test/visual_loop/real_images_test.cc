@@ -1,9 +1,9 @@
 // The loop checker on the real and rendered frames in ../shared/data/visual (see its README);
 // every test skips with a message when the folder is absent.
+#include <gtest/gtest.h>
+
 #include <filesystem>
 #include <fstream>
-
-#include <gtest/gtest.h>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgcodecs.hpp>
 
@@ -11,6 +11,7 @@
 #include "fusemap/visual_loop/image_sequence.h"
 #include "fusemap/visual_loop/keyframe.h"
 #include "fusemap/visual_loop/loop_detector.h"
+#include "fusemap/visual_loop/patch_alignment.h"
 #include "visual_loop/synthetic_views.h"
 
 namespace fusemap {
@@ -83,6 +84,44 @@ TEST(RealImagesTest, IclLivingRoomPnpRecoversTheTrueRelativePose) {
   }
 }
 
+// The motion links' refinement on pixels (RefineByPatchAlignment) on real-looking images: it
+// must not cost the pose what it gains in the simulator.
+TEST(RealImagesTest, IclLivingRoomPatchRefinementKeepsTheTrueRelativePose) {
+  const std::string dir = kVisual + "/open3d_icl_livingroom";
+  SKIP_WITHOUT(dir);
+  const std::vector<common::Rigid3d> T_world_cam = ReadTrajectoryLog(dir + "/trajectory.log");
+  ASSERT_EQ(T_world_cam.size(), 5u);
+  const sensor::PinholeIntrinsics in = Intrinsics(525.0, 525.0, 319.5, 239.5);
+  CameraImage image_a;
+  image_a.gray = cv::imread(dir + "/color/00000.jpg", cv::IMREAD_GRAYSCALE);
+  image_a.depth_m =
+      DepthToMeters(cv::imread(dir + "/depth/00000.png", cv::IMREAD_ANYDEPTH), 1000.0);
+  image_a.intrinsics = in;
+  const Keyframe a = Load(dir + "/color/00000.jpg", dir + "/depth/00000.png", 1000.0, in, nullptr);
+  for (int j = 1; j < 5; ++j) {
+    const std::string path_b = dir + "/color/0000" + std::to_string(j) + ".jpg";
+    CameraImage image_b;
+    image_b.gray = cv::imread(path_b, cv::IMREAD_GRAYSCALE);
+    image_b.intrinsics = in;
+    const Keyframe b = Load(path_b, "", 1.0, in, nullptr);
+    VerificationResult result = VerifyKeyframes(a, b, VerificationOptions{});
+    ASSERT_TRUE(result.verified) << j << ": " << result.reason;
+    const common::Rigid3d truth = T_world_cam[0].inverse() * T_world_cam[j];
+    const double before_m = (result.T_a_b.translation() - truth.translation()).norm();
+    const double before_deg = testing::AngleBetweenDeg(result.T_a_b, truth);
+    const int aligned =
+        RefineByPatchAlignment(a, image_a, b, image_b, PatchAlignmentOptions{}, 20, &result);
+    const double error_m = (result.T_a_b.translation() - truth.translation()).norm();
+    const double error_deg = testing::AngleBetweenDeg(result.T_a_b, truth);
+    std::cout << "ICL 0 -> " << j << " refined on pixels: " << aligned << " of " << result.inliers
+              << " aligned, error " << before_m * 1000.0 << " -> " << error_m * 1000.0 << " mm, "
+              << before_deg << " -> " << error_deg << " deg\n";
+    EXPECT_GE(aligned, result.inliers / 2) << j;
+    EXPECT_LT(error_m, 0.01) << j;
+    EXPECT_LT(error_deg, 0.3) << j;
+  }
+}
+
 TEST(RealImagesTest, TumPairGivesAHundredInliersAndAConsistentPose) {
   const std::string dir = kVisual + "/slambook2_tum_fr2/pair_ch7";
   SKIP_WITHOUT(dir);
@@ -104,6 +143,42 @@ TEST(RealImagesTest, TumPairGivesAHundredInliersAndAConsistentPose) {
             << loop.rotation().angularDistance(Eigen::Quaterniond::Identity()) * 180.0 / M_PI << " deg\n";
   EXPECT_LT(loop.translation().norm(), 0.02);
   EXPECT_LT(loop.rotation().angularDistance(Eigen::Quaterniond::Identity()), 0.5 * M_PI / 180.0);
+  EXPECT_NEAR(forward.T_a_b.translation().norm(), 0.15, 0.03);
+}
+
+// On real Kinect images the refinement on pixels keeps the pair's two estimates (each from its
+// own depth) each other's inverse.
+TEST(RealImagesTest, TumPairPatchRefinementKeepsThePoseConsistent) {
+  const std::string dir = kVisual + "/slambook2_tum_fr2/pair_ch7";
+  SKIP_WITHOUT(dir);
+  const sensor::PinholeIntrinsics in = Intrinsics(520.9, 521.0, 325.1, 249.7);
+  CameraImage images[2];
+  Keyframe keyframes[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string stem = dir + "/" + std::to_string(i + 1);
+    images[i].gray = cv::imread(stem + ".png", cv::IMREAD_GRAYSCALE);
+    images[i].depth_m = DepthToMeters(cv::imread(stem + "_depth.png", cv::IMREAD_ANYDEPTH), 5000.0);
+    images[i].intrinsics = in;
+    keyframes[i] = Load(stem + ".png", stem + "_depth.png", 5000.0, in, nullptr);
+  }
+  VerificationResult forward = VerifyKeyframes(keyframes[0], keyframes[1], VerificationOptions{});
+  VerificationResult backward = VerifyKeyframes(keyframes[1], keyframes[0], VerificationOptions{});
+  ASSERT_TRUE(forward.verified && backward.verified);
+  const common::Rigid3d loop_before = forward.T_a_b * backward.T_a_b;
+  const int aligned_forward = RefineByPatchAlignment(
+      keyframes[0], images[0], keyframes[1], images[1], PatchAlignmentOptions{}, 20, &forward);
+  const int aligned_backward = RefineByPatchAlignment(
+      keyframes[1], images[1], keyframes[0], images[0], PatchAlignmentOptions{}, 20, &backward);
+  const common::Rigid3d loop = forward.T_a_b * backward.T_a_b;
+  const double loop_deg =
+      loop.rotation().angularDistance(Eigen::Quaterniond::Identity()) * 180.0 / M_PI;
+  std::cout << "TUM pair refined on pixels: " << aligned_forward << " / " << aligned_backward
+            << " aligned, round trip " << loop_before.translation().norm() * 1000.0 << " -> "
+            << loop.translation().norm() * 1000.0 << " mm, " << loop_deg << " deg\n";
+  EXPECT_GE(aligned_forward, 100);
+  EXPECT_GE(aligned_backward, 100);
+  EXPECT_LT(loop.translation().norm(), 0.02);
+  EXPECT_LT(loop_deg, 0.5);
   EXPECT_NEAR(forward.T_a_b.translation().norm(), 0.15, 0.03);
 }
 

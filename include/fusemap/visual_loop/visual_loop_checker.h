@@ -1,20 +1,20 @@
 #ifndef FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
 #define FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
 
+#include <Eigen/Core>
 #include <map>
 #include <memory>
+#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <opencv2/core.hpp>
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/sensor/rgbd_frame.h"
 #include "fusemap/visual_loop/keyframe_selector.h"
 #include "fusemap/visual_loop/loop_arbiter.h"
 #include "fusemap/visual_loop/loop_detector.h"
+#include "fusemap/visual_loop/patch_alignment.h"
 #include "fusemap/visual_loop/planar_constraint.h"
 
 namespace fusemap {
@@ -34,6 +34,12 @@ struct VisualLoopCheckerOptions {
   double max_overlap_distance_m = 1.0;
   double max_overlap_yaw_rad = 0.5;
   int max_contradiction_inliers = 12;
+  // The images of the two latest keyframes are held, and a match between them (the camera's
+  // motion from one keyframe to the next) is refined on their pixels (RefineByPatchAlignment)
+  // when at least patch_alignment_min_points of its inliers align. Older keyframes keep no pixels.
+  bool refine_latest_on_pixels = true;
+  PatchAlignmentOptions patch_alignment;
+  int patch_alignment_min_points = 20;
   bool IsValid(std::string* error) const;
 };
 
@@ -64,6 +70,10 @@ struct VisualCheckResult {
   VisualCheck check = VisualCheck::kNotChecked;
   std::optional<VisualLoopConstraint> constraint;  // when kVerified
   std::string reason;
+  // Between the two latest keyframes (refine_latest_on_pixels): the inliers aligned on pixels,
+  // and whether the pose was re-estimated from them.
+  int aligned_points = 0;
+  bool refined_on_pixels = false;
 };
 
 // A keyframe as a checkpoint keeps it: what the detector holds and the camera mount.
@@ -137,6 +147,7 @@ class VisualLoopChecker {
   KeyframeSelector selector_;
   LoopDetector detector_;
   std::map<int, common::Rigid3d> T_base_camera_;  // per keyframe id
+  std::map<int, CameraImage> latest_images_;      // of the two latest keyframes
   int next_id_ = 0;
   VisualLoopCheckerStats stats_;
 };

@@ -1,0 +1,208 @@
+#include "fusemap/visual_loop/patch_alignment.h"
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <opencv2/calib3d.hpp>
+#include <vector>
+
+#include "fusemap/visual_loop/pose_covariance.h"
+
+namespace fusemap {
+namespace visual_loop {
+namespace {
+
+// Bilinear grey value at (x, y); false outside the image (with one pixel to spare for the
+// central differences).
+bool Sample(const cv::Mat& gray, double x, double y, double* value) {
+  if (!(x >= 1.0 && y >= 1.0 && x < gray.cols - 2.0 && y < gray.rows - 2.0)) return false;
+  const int x0 = static_cast<int>(x);
+  const int y0 = static_cast<int>(y);
+  const double fx = x - x0;
+  const double fy = y - y0;
+  const uint8_t* row0 = gray.ptr<uint8_t>(y0) + x0;
+  const uint8_t* row1 = gray.ptr<uint8_t>(y0 + 1) + x0;
+  *value = (1.0 - fy) * ((1.0 - fx) * row0[0] + fx * row0[1]) +
+           fy * ((1.0 - fx) * row1[0] + fx * row1[1]);
+  return true;
+}
+
+Eigen::Vector3d Ray(const sensor::PinholeIntrinsics& in, const Eigen::Vector2d& pixel) {
+  return Eigen::Vector3d((pixel.x() - in.cx) / in.fx, (pixel.y() - in.cy) / in.fy, 1.0);
+}
+
+// The normal of the surface around point_a, fitted to a's depth; the ray's direction where the
+// depth there does not hold a plane (too few pixels on the point's own surface).
+Eigen::Vector3d SurfaceNormal(const CameraImage& a, const Eigen::Vector2d& pixel_a,
+                              const Eigen::Vector3d& point_a, int half_window) {
+  const Eigen::Vector3d fallback = Ray(a.intrinsics, pixel_a).normalized();
+  if (a.depth_m.empty()) return fallback;
+  const int u0 = static_cast<int>(std::lround(pixel_a.x()));
+  const int v0 = static_cast<int>(std::lround(pixel_a.y()));
+  // Pixels further in depth than this from the point belong to another surface.
+  const double max_depth_step_m = 0.1 * point_a.z();
+  std::vector<Eigen::Vector3d> points;
+  for (int v = v0 - half_window; v <= v0 + half_window; ++v) {
+    if (v < 0 || v >= a.depth_m.rows) continue;
+    const float* row = a.depth_m.ptr<float>(v);
+    for (int u = u0 - half_window; u <= u0 + half_window; ++u) {
+      if (u < 0 || u >= a.depth_m.cols) continue;
+      const double z = row[u];
+      if (!(z > 0.0) || std::abs(z - point_a.z()) > max_depth_step_m) continue;
+      points.push_back(z * Ray(a.intrinsics, Eigen::Vector2d(u, v)));
+    }
+  }
+  if (points.size() < 16) return fallback;
+  Eigen::Vector3d mean = Eigen::Vector3d::Zero();
+  for (const Eigen::Vector3d& p : points) mean += p;
+  mean /= static_cast<double>(points.size());
+  Eigen::Matrix3d scatter = Eigen::Matrix3d::Zero();
+  for (const Eigen::Vector3d& p : points) scatter += (p - mean) * (p - mean).transpose();
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(scatter);
+  // A patch too small or too noisy to tell a plane from a line gives no normal.
+  if (!(solver.eigenvalues()(1) > 4.0 * solver.eigenvalues()(0))) return fallback;
+  return solver.eigenvectors().col(0);
+}
+
+}  // namespace
+
+bool PatchAlignmentOptions::IsValid(std::string* error) const {
+  if (half_window_px < 2 || plane_half_window_px < 2 || max_iterations < 1 ||
+      !(max_shift_px > 0.0) || !(min_gradient >= 0.0)) {
+    *error = "patch alignment: windows >= 2 px, max_iterations >= 1, max_shift_px > 0";
+    return false;
+  }
+  return true;
+}
+
+std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImage& b,
+                                          const common::Rigid3d& T_b_a,
+                                          const Eigen::Vector2d& pixel_a,
+                                          const Eigen::Vector3d& point_a,
+                                          const Eigen::Vector2d& keypoint_b,
+                                          const PatchAlignmentOptions& options) {
+  // The patch's pixels lie on the plane through point_a with the surface's normal; each is
+  // carried into b by the pose.
+  const Eigen::Vector3d normal = SurfaceNormal(a, pixel_a, point_a, options.plane_half_window_px);
+  const double plane_offset = normal.dot(point_a);
+  const int h = options.half_window_px;
+  const int n = (2 * h + 1) * (2 * h + 1);
+  std::vector<double> template_a(n);
+  std::vector<Eigen::Vector2d> warped(n);
+  int k = 0;
+  for (int j = -h; j <= h; ++j) {
+    for (int i = -h; i <= h; ++i, ++k) {
+      const Eigen::Vector2d pixel = pixel_a + Eigen::Vector2d(i, j);
+      if (!Sample(a.gray, pixel.x(), pixel.y(), &template_a[k])) return std::nullopt;
+      const Eigen::Vector3d ray = Ray(a.intrinsics, pixel);
+      const double along = normal.dot(ray);
+      if (std::abs(along) < 1e-6) return std::nullopt;
+      const Eigen::Vector3d in_b = T_b_a * ((plane_offset / along) * ray);
+      if (!(in_b.z() > 0.0)) return std::nullopt;
+      warped[k] = Project(b.intrinsics, in_b);
+    }
+  }
+  const Eigen::Vector3d centre_b = T_b_a * point_a;
+  if (!(centre_b.z() > 0.0)) return std::nullopt;
+  const Eigen::Vector2d predicted_b = Project(b.intrinsics, centre_b);
+
+  // Gauss-Newton on the shift in b and the grey levels' gain and offset between the views,
+  // from the descriptor match's keypoint: it is within a pixel of the point, closer than the
+  // pose's prediction can be, and the alignment's reach is about a pixel on sharp texture.
+  Eigen::Vector2d shift = keypoint_b - predicted_b;
+  double gain = 1.0;
+  double offset = 0.0;
+  bool converged = false;
+  for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
+    Eigen::Matrix4d hessian = Eigen::Matrix4d::Zero();
+    Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
+    Eigen::Matrix2d structure = Eigen::Matrix2d::Zero();
+    for (k = 0; k < n; ++k) {
+      const Eigen::Vector2d p = warped[k] + shift;
+      double value, left, right, up, down;
+      if (!Sample(b.gray, p.x(), p.y(), &value) || !Sample(b.gray, p.x() - 1.0, p.y(), &left) ||
+          !Sample(b.gray, p.x() + 1.0, p.y(), &right) || !Sample(b.gray, p.x(), p.y() - 1.0, &up) ||
+          !Sample(b.gray, p.x(), p.y() + 1.0, &down)) {
+        return std::nullopt;
+      }
+      const Eigen::Vector2d image_gradient(0.5 * (right - left), 0.5 * (down - up));
+      const Eigen::Vector4d jacobian(image_gradient.x(), image_gradient.y(), -template_a[k], -1.0);
+      const double residual = value - (gain * template_a[k] + offset);
+      hessian += jacobian * jacobian.transpose();
+      gradient += jacobian * residual;
+      structure += image_gradient * image_gradient.transpose();
+    }
+    if (iteration == 0) {
+      const double weakest =
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(structure / n).eigenvalues()(0);
+      if (!(weakest >= options.min_gradient * options.min_gradient)) return std::nullopt;
+    }
+    const Eigen::Vector4d step = hessian.ldlt().solve(-gradient);
+    if (!step.allFinite()) return std::nullopt;
+    shift += step.head<2>();
+    gain += step(2);
+    offset += step(3);
+    if ((predicted_b + shift - keypoint_b).norm() > 2.0 * options.max_shift_px) return std::nullopt;
+    if (step.head<2>().norm() < 1e-3) {
+      converged = true;
+      break;
+    }
+  }
+  if (!converged) return std::nullopt;
+  const Eigen::Vector2d aligned = predicted_b + shift;
+  if ((aligned - keypoint_b).norm() > options.max_shift_px) return std::nullopt;
+  return aligned;
+}
+
+int RefineByPatchAlignment(const Keyframe& a, const CameraImage& image_a, const Keyframe& b,
+                           const CameraImage& image_b, const PatchAlignmentOptions& options,
+                           int min_points, VerificationResult* result) {
+  if (!result->verified || !result->metric) return 0;
+  const common::Rigid3d T_b_a = result->T_a_b.inverse();
+  std::vector<cv::Point3f> object;
+  std::vector<cv::Point2f> image;
+  std::vector<Eigen::Vector3d> points_a;
+  for (const cv::DMatch& m : result->inlier_matches) {
+    const Eigen::Vector3f& p = a.points_camera[m.queryIdx];
+    if (!std::isfinite(p.z())) continue;
+    const cv::Point2f& pixel_a = a.keypoints[m.queryIdx];
+    const cv::Point2f& keypoint_b = b.keypoints[m.trainIdx];
+    const std::optional<Eigen::Vector2d> aligned =
+        AlignPatch(image_a, image_b, T_b_a, Eigen::Vector2d(pixel_a.x, pixel_a.y), p.cast<double>(),
+                   Eigen::Vector2d(keypoint_b.x, keypoint_b.y), options);
+    if (!aligned) continue;
+    object.emplace_back(p.x(), p.y(), p.z());
+    image.emplace_back(static_cast<float>(aligned->x()), static_cast<float>(aligned->y()));
+    points_a.push_back(p.cast<double>());
+  }
+  const int aligned_points = static_cast<int>(object.size());
+  if (aligned_points < std::max(min_points, 6)) return aligned_points;
+  const Eigen::AngleAxisd rotation(T_b_a.rotation());
+  const Eigen::Vector3d r = rotation.angle() * rotation.axis();
+  cv::Mat rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
+  cv::Mat tvec = (cv::Mat_<double>(3, 1) << T_b_a.translation().x(), T_b_a.translation().y(),
+                  T_b_a.translation().z());
+  const sensor::PinholeIntrinsics& in = b.intrinsics;
+  const cv::Matx33d K(in.fx, 0.0, in.cx, 0.0, in.fy, in.cy, 0.0, 0.0, 1.0);
+  cv::solvePnPRefineLM(object, image, K, cv::noArray(), rvec, tvec);
+  const Eigen::Vector3d refined_r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
+  const double angle = refined_r.norm();
+  const Eigen::Quaterniond q = angle > 0.0
+                                   ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, refined_r / angle))
+                                   : Eigen::Quaterniond::Identity();
+  const common::Rigid3d refined_T_b_a(
+      Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)), q);
+  std::vector<Eigen::Vector2d> pixels_b;
+  double error_sum = 0.0;
+  for (int i = 0; i < aligned_points; ++i) {
+    pixels_b.emplace_back(image[i].x, image[i].y);
+    error_sum += (Project(in, refined_T_b_a * points_a[i]) - pixels_b.back()).norm();
+  }
+  result->T_a_b = refined_T_b_a.inverse();
+  result->mean_reprojection_px = error_sum / aligned_points;
+  result->covariance = PnpCovariance(result->T_a_b, points_a, pixels_b, in);
+  return aligned_points;
+}
+
+}  // namespace visual_loop
+}  // namespace fusemap
