@@ -35,6 +35,18 @@ Views MakeViews(const common::Rigid3d& T_a_b) {
   return views;
 }
 
+// The views' keyframes, with depth in a (as the checker keeps them).
+struct Keyframes {
+  Keyframe a;
+  Keyframe b;
+};
+
+Keyframes MakeKeyframes(const Views& views) {
+  const OrbExtractor extractor{OrbOptions{}};
+  return {MakeKeyframe(views.a.gray, views.a.depth_m, views.a.intrinsics, extractor, nullptr, {}),
+          MakeKeyframe(views.b.gray, cv::Mat(), views.b.intrinsics, extractor, nullptr, {})};
+}
+
 // Corners of a's texture in the middle of the image (the kind of point a keypoint is), each
 // moved off the pixel grid.
 std::vector<Eigen::Vector2d> CornersOf(const cv::Mat& gray, int count) {
@@ -134,11 +146,9 @@ TEST(PatchAlignmentTest, RefusesAPointFurtherThanMaxShiftFromItsKeypoint) {
 TEST(PatchAlignmentTest, RefinedPnpIsCloserToTheTruth) {
   const common::Rigid3d T_a_b = StepTowardsThePlane();
   const Views views = MakeViews(T_a_b);
-  const OrbExtractor extractor{OrbOptions{}};
-  const Keyframe a =
-      MakeKeyframe(views.a.gray, views.a.depth_m, views.a.intrinsics, extractor, nullptr, {});
-  const Keyframe b =
-      MakeKeyframe(views.b.gray, cv::Mat(), views.b.intrinsics, extractor, nullptr, {});
+  const Keyframes keyframes = MakeKeyframes(views);
+  const Keyframe& a = keyframes.a;
+  const Keyframe& b = keyframes.b;
   VerificationResult result = VerifyKeyframes(a, b, VerificationOptions{});
   ASSERT_TRUE(result.verified) << result.reason;
   const double before_m = (result.T_a_b.translation() - T_a_b.translation()).norm();
@@ -157,11 +167,9 @@ TEST(PatchAlignmentTest, RefinedPnpIsCloserToTheTruth) {
 TEST(PatchAlignmentTest, RefineLeavesAResultWithTooFewAlignedPoints) {
   const common::Rigid3d T_a_b = StepTowardsThePlane();
   Views views = MakeViews(T_a_b);
-  const OrbExtractor extractor{OrbOptions{}};
-  const Keyframe a =
-      MakeKeyframe(views.a.gray, views.a.depth_m, views.a.intrinsics, extractor, nullptr, {});
-  const Keyframe b =
-      MakeKeyframe(views.b.gray, cv::Mat(), views.b.intrinsics, extractor, nullptr, {});
+  const Keyframes keyframes = MakeKeyframes(views);
+  const Keyframe& a = keyframes.a;
+  const Keyframe& b = keyframes.b;
   VerificationResult result = VerifyKeyframes(a, b, VerificationOptions{});
   ASSERT_TRUE(result.verified) << result.reason;
   const VerificationResult before = result;
