@@ -1,10 +1,11 @@
 #include "fusemap/visual_loop/patch_alignment.h"
 
+#include <cmath>
+#include <vector>
+
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
-#include <cmath>
 #include <opencv2/calib3d.hpp>
-#include <vector>
 
 #include "fusemap/visual_loop/pose_covariance.h"
 

@@ -4,6 +4,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+
 #include <opencv2/imgproc.hpp>
 
 namespace fusemap {
@@ -15,9 +16,12 @@ bool VisualLoopCheckerOptions::IsValid(std::string* error) const {
     return false;
   }
   if (min_points_to_contradict < 1 || !(max_overlap_distance_m > 0.0) ||
-      !(max_overlap_yaw_rad > 0.0) || max_contradiction_inliers < 0 ||
-      patch_alignment_min_points < 6) {
+      !(max_overlap_yaw_rad > 0.0) || max_contradiction_inliers < 0) {
     *error = "visual loop checker: contradiction thresholds must be positive";
+    return false;
+  }
+  if (patch_alignment_min_points < 6) {
+    *error = "visual loop checker: patch_alignment_min_points must be >= 6 (a pose from points)";
     return false;
   }
   return true;

@@ -1,10 +1,11 @@
 #ifndef FUSEMAP_VISUAL_LOOP_PATCH_ALIGNMENT_H_
 #define FUSEMAP_VISUAL_LOOP_PATCH_ALIGNMENT_H_
 
-#include <Eigen/Core>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/sensor/rgbd_frame.h"

@@ -1,13 +1,14 @@
 #ifndef FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
 #define FUSEMAP_VISUAL_LOOP_VISUAL_LOOP_CHECKER_H_
 
-#include <Eigen/Core>
 #include <map>
 #include <memory>
-#include <opencv2/core.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
+#include <opencv2/core.hpp>
 
 #include "fusemap/common/rigid_transform.h"
 #include "fusemap/sensor/rgbd_frame.h"
