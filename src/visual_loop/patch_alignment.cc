@@ -28,6 +28,34 @@ bool Sample(const cv::Mat& gray, double x, double y, double* value) {
   return true;
 }
 
+// Bilinear grey value at p and its gradient (central differences one pixel either side, each
+// bilinear too); false within a pixel of the border. The five values share one 4 x 4
+// neighbourhood and its interpolation weights: this runs ~10^6 times a keyframe.
+bool SampleWithGradient(const cv::Mat& gray, const Eigen::Vector2d& p, double* value,
+                        Eigen::Vector2d* gradient) {
+  if (!(p.x() >= 1.0 && p.y() >= 1.0 && p.x() < gray.cols - 2.0 && p.y() < gray.rows - 2.0)) {
+    return false;
+  }
+  const int x0 = static_cast<int>(p.x());
+  const int y0 = static_cast<int>(p.y());
+  const double fx = p.x() - x0;
+  const double fy = p.y() - y0;
+  // Rows y0 - 1 .. y0 + 2, columns x0 - 1 .. x0 + 2.
+  double v[4][4];
+  for (int r = 0; r < 4; ++r) {
+    const uint8_t* row = gray.ptr<uint8_t>(y0 - 1 + r) + x0 - 1;
+    for (int c = 0; c < 4; ++c) v[r][c] = row[c];
+  }
+  // Interpolated at column offset c (0: x0 - 1) along rows r and r + 1.
+  const auto at = [&](int r, int c) {
+    return (1.0 - fy) * ((1.0 - fx) * v[r][c] + fx * v[r][c + 1]) +
+           fy * ((1.0 - fx) * v[r + 1][c] + fx * v[r + 1][c + 1]);
+  };
+  *value = at(1, 1);
+  *gradient = Eigen::Vector2d(0.5 * (at(1, 2) - at(1, 0)), 0.5 * (at(2, 1) - at(0, 1)));
+  return true;
+}
+
 Eigen::Vector3d Ray(const sensor::PinholeIntrinsics& in, const Eigen::Vector2d& pixel) {
   return Eigen::Vector3d((pixel.x() - in.cx) / in.fx, (pixel.y() - in.cy) / in.fy, 1.0);
 }
@@ -68,9 +96,10 @@ Eigen::Vector3d SurfaceNormal(const CameraImage& a, const Eigen::Vector2d& pixel
 }  // namespace
 
 bool PatchAlignmentOptions::IsValid(std::string* error) const {
-  if (half_window_px < 2 || plane_half_window_px < 2 || max_iterations < 1 ||
+  if (half_window_px < 2 || plane_half_window_px < 2 || max_iterations < 1 || max_points < 6 ||
       !(max_shift_px > 0.0) || !(min_gradient >= 0.0)) {
-    *error = "patch alignment: windows >= 2 px, max_iterations >= 1, max_shift_px > 0";
+    *error =
+        "patch alignment: windows >= 2 px, max_iterations >= 1, max_points >= 6, max_shift_px > 0";
     return false;
   }
   return true;
@@ -119,14 +148,11 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
     Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
     Eigen::Matrix2d structure = Eigen::Matrix2d::Zero();
     for (k = 0; k < n; ++k) {
-      const Eigen::Vector2d p = warped[k] + shift;
-      double value, left, right, up, down;
-      if (!Sample(b.gray, p.x(), p.y(), &value) || !Sample(b.gray, p.x() - 1.0, p.y(), &left) ||
-          !Sample(b.gray, p.x() + 1.0, p.y(), &right) || !Sample(b.gray, p.x(), p.y() - 1.0, &up) ||
-          !Sample(b.gray, p.x(), p.y() + 1.0, &down)) {
+      double value;
+      Eigen::Vector2d image_gradient;
+      if (!SampleWithGradient(b.gray, warped[k] + shift, &value, &image_gradient)) {
         return std::nullopt;
       }
-      const Eigen::Vector2d image_gradient(0.5 * (right - left), 0.5 * (down - up));
       const Eigen::Vector4d jacobian(image_gradient.x(), image_gradient.y(), -template_a[k], -1.0);
       const double residual = value - (gain * template_a[k] + offset);
       hessian += jacobian * jacobian.transpose();
@@ -144,7 +170,7 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
     gain += step(2);
     offset += step(3);
     if ((predicted_b + shift - keypoint_b).norm() > 2.0 * options.max_shift_px) return std::nullopt;
-    if (step.head<2>().norm() < 1e-3) {
+    if (step.head<2>().norm() < 1e-2) {
       converged = true;
       break;
     }
@@ -163,7 +189,11 @@ int RefineByPatchAlignment(const Keyframe& a, const CameraImage& image_a, const 
   std::vector<cv::Point3f> object;
   std::vector<cv::Point2f> image;
   std::vector<Eigen::Vector3d> points_a;
-  for (const cv::DMatch& m : result->inlier_matches) {
+  // Every stride-th inlier, so that at most max_points are aligned, spread as the inliers are.
+  const int num_inliers = static_cast<int>(result->inlier_matches.size());
+  const int stride = (num_inliers + options.max_points - 1) / options.max_points;
+  for (int i = 0; i < num_inliers; i += stride) {
+    const cv::DMatch& m = result->inlier_matches[i];
     const Eigen::Vector3f& p = a.points_camera[m.queryIdx];
     if (!std::isfinite(p.z())) continue;
     const cv::Point2f& pixel_a = a.keypoints[m.queryIdx];

@@ -116,7 +116,7 @@ TEST(RealImagesTest, IclLivingRoomPatchRefinementKeepsTheTrueRelativePose) {
     std::cout << "ICL 0 -> " << j << " refined on pixels: " << aligned << " of " << result.inliers
               << " aligned, error " << before_m * 1000.0 << " -> " << error_m * 1000.0 << " mm, "
               << before_deg << " -> " << error_deg << " deg\n";
-    EXPECT_GE(aligned, result.inliers / 2) << j;
+    EXPECT_GE(aligned, 150) << j;  // of 267-477 inliers, at most max_points (300) tried
     EXPECT_LT(error_m, 0.01) << j;
     EXPECT_LT(error_deg, 0.3) << j;
   }
