@@ -1,7 +1,7 @@
 // fusemap_bench_vloop: what the visual loop checker costs on one core at 640x480 — keyframe
 // processing (ORB + BoW, retrieval, PnP verification), retrieval among N keyframes, a motion
-// link's refinement on pixels, vocabulary load time and memory per keyframe. Real frames from ../shared/data/visual; the N database
-// entries are synthesised from those frames' descriptors.
+// link's refinement on pixels, vocabulary load time and memory per keyframe. Real frames from
+// ../shared/data/visual; the N database entries are synthesised from those frames' descriptors.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
