@@ -13,8 +13,7 @@ namespace fusemap {
 namespace visual_loop {
 namespace {
 
-// Bilinear grey value at (x, y); false outside the image (with one pixel to spare for the
-// central differences).
+// Bilinear grey value at (x, y); false within a pixel of the border (as SampleWithGradient).
 bool Sample(const cv::Mat& gray, double x, double y, double* value) {
   if (!(x >= 1.0 && y >= 1.0 && x < gray.cols - 2.0 && y < gray.rows - 2.0)) return false;
   const int x0 = static_cast<int>(x);
@@ -30,7 +29,7 @@ bool Sample(const cv::Mat& gray, double x, double y, double* value) {
 
 // Bilinear grey value at p and its gradient (central differences one pixel either side, each
 // bilinear too); false within a pixel of the border. The five values share one 4 x 4
-// neighbourhood and its interpolation weights: this runs ~10^6 times a keyframe.
+// neighbourhood and its interpolation weights: this runs ~10^5 times a motion link.
 bool SampleWithGradient(const cv::Mat& gray, const Eigen::Vector2d& p, double* value,
                         Eigen::Vector2d* gradient) {
   if (!(p.x() >= 1.0 && p.y() >= 1.0 && p.x() < gray.cols - 2.0 && p.y() < gray.rows - 2.0)) {
