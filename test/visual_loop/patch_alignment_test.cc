@@ -1,7 +1,8 @@
 #include "fusemap/visual_loop/patch_alignment.h"
 
-#include <gtest/gtest.h>
+#include <algorithm>
 
+#include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
 
 #include "fusemap/visual_loop/pose_covariance.h"
