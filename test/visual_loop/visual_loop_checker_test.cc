@@ -22,14 +22,21 @@ CameraFrame Frame(const cv::Mat& image, bool with_depth, double stamp_s) {
   return frame;
 }
 
+std::unique_ptr<VisualLoopChecker> MakeChecker(const VisualLoopCheckerOptions& options) {
+  std::string error;
+  auto vocabulary =
+      Vocabulary::Load(std::string(FUSEMAP_SOURCE_DIR) + "/data/vocabulary/orb_k10_l4.bin", &error);
+  EXPECT_TRUE(vocabulary) << error;
+  if (!vocabulary) return nullptr;
+  return std::make_unique<VisualLoopChecker>(
+      options, std::make_shared<const Vocabulary>(std::move(*vocabulary)));
+}
+
 class VisualLoopCheckerTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string error;
-    auto vocabulary = Vocabulary::Load(std::string(FUSEMAP_SOURCE_DIR) + "/data/vocabulary/orb_k10_l4.bin", &error);
-    ASSERT_TRUE(vocabulary) << error;
-    checker_ = std::make_unique<VisualLoopChecker>(VisualLoopCheckerOptions{},
-                                                   std::make_shared<const Vocabulary>(std::move(*vocabulary)));
+    checker_ = MakeChecker(VisualLoopCheckerOptions{});
+    ASSERT_TRUE(checker_);
     const sensor::PinholeIntrinsics in = testing::TestIntrinsics();
     const cv::Mat place = testing::RandomTexture(in.width, in.height, 21);
     // Keyframe 0: the place, with depth. Keyframe 1: the same place, the base 0.2 m further and
@@ -76,6 +83,42 @@ TEST_F(VisualLoopCheckerTest, ContradictsOnlyWhereRichViewsShouldOverlap) {
   // A blank wall cannot contradict anything.
   EXPECT_EQ(checker_->CheckPlace(3, 0, truth_).check, VisualCheck::kNotChecked);
   EXPECT_EQ(checker_->CheckPlace(7, 0, truth_).check, VisualCheck::kNotChecked);
+}
+
+// Pixels are held for the two latest keyframes only: a match between them (a motion link) is
+// refined on them, one with an older keyframe is not.
+TEST(VisualLoopCheckerPixelsTest, RefinesOnlyBetweenTheTwoLatestKeyframes) {
+  for (const bool enabled : {true, false}) {
+    VisualLoopCheckerOptions options;
+    options.refine_latest_on_pixels = enabled;
+    const std::unique_ptr<VisualLoopChecker> checker = MakeChecker(options);
+    ASSERT_TRUE(checker);
+    const sensor::PinholeIntrinsics in = testing::TestIntrinsics();
+    const common::Rigid2d truth(0.3, 0.0, 0.0);  // straight towards the wall
+    const cv::Mat place = testing::RandomTexture(in.width, in.height, 31);
+    const cv::Mat closer = testing::WarpToView(
+        place, CameraMount().inverse() * common::Rigid3d::FromRigid2d(truth) * CameraMount(), in,
+        kPlaneDepthM);
+    EXPECT_TRUE(
+        checker->AddFrame(Frame(place, true, 0.0), common::Rigid2d::Identity(), 0, 0).keyframe);
+    EXPECT_TRUE(checker->AddFrame(Frame(closer, true, 1.0), truth, 1, 0).keyframe);
+    const VisualCheckResult latest = checker->CheckPlace(1, 0, truth);
+    ASSERT_EQ(latest.check, VisualCheck::kVerified) << latest.reason;
+    EXPECT_EQ(latest.refined_on_pixels, enabled);
+    EXPECT_EQ(latest.aligned_points >= options.patch_alignment_min_points, enabled)
+        << latest.aligned_points;
+    EXPECT_NEAR(latest.constraint->T_match_base_query_base.x(), 0.3, 0.002);
+    // Two more keyframes: 0 and 1 are no longer the latest, their pixels are gone.
+    const cv::Mat other = testing::RandomTexture(in.width, in.height, 32);
+    EXPECT_TRUE(
+        checker->AddFrame(Frame(other, true, 2.0), common::Rigid2d(1.0, 0.0, 0.0), 2, 0).keyframe);
+    EXPECT_TRUE(
+        checker->AddFrame(Frame(other, true, 3.0), common::Rigid2d(2.0, 0.0, 0.0), 3, 0).keyframe);
+    const VisualCheckResult older = checker->CheckPlace(1, 0, truth);
+    ASSERT_EQ(older.check, VisualCheck::kVerified) << older.reason;
+    EXPECT_FALSE(older.refined_on_pixels);
+    EXPECT_EQ(older.aligned_points, 0);
+  }
 }
 
 TEST_F(VisualLoopCheckerTest, KeyframesAreFoundByNodeAndReleasedWithTheirSubmap) {
