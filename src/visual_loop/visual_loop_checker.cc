@@ -5,8 +5,6 @@
 #include <cmath>
 #include <cstdlib>
 
-#include <opencv2/imgproc.hpp>
-
 namespace fusemap {
 namespace visual_loop {
 
@@ -54,11 +52,7 @@ VisualLoopChecker::FrameResult VisualLoopChecker::AddFrame(const CameraFrame& fr
   T_base_camera_[keyframe.id] = frame.T_base_camera;
   if (options_.refine_latest_on_pixels) {
     CameraImage& image = latest_images_[keyframe.id];
-    if (frame.image.channels() == 1) {
-      image.gray = frame.image.clone();
-    } else {
-      cv::cvtColor(frame.image, image.gray, cv::COLOR_BGR2GRAY);
-    }
+    image.gray = ToGray(frame.image).clone();  // held after the caller's frame is gone
     image.depth_m = frame.depth_m.clone();
     image.intrinsics = frame.intrinsics;
     while (latest_images_.size() > 2) latest_images_.erase(latest_images_.begin());
