@@ -13,10 +13,6 @@ namespace {
 
 bool HasIntrinsics(const Keyframe& k) { return k.intrinsics.fx > 0.0 && k.intrinsics.fy > 0.0; }
 
-cv::Matx33d CameraMatrix(const sensor::PinholeIntrinsics& in) {
-  return {in.fx, 0.0, in.cx, 0.0, in.fy, in.cy, 0.0, 0.0, 1.0};
-}
-
 int OccupiedCells(const std::vector<cv::Point2f>& points, int width, int height,
                   const VerificationOptions& options) {
   std::vector<bool> occupied(options.grid_cols * options.grid_rows, false);
@@ -50,14 +46,6 @@ bool CheckSupport(const Keyframe& a, const Keyframe& b, const VerificationOption
     return false;
   }
   return true;
-}
-
-common::Rigid3d FromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec) {
-  const Eigen::Vector3d r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
-  const double angle = r.norm();
-  const Eigen::Quaterniond q = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle))
-                                           : Eigen::Quaterniond::Identity();
-  return common::Rigid3d(Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)), q);
 }
 
 void VerifyPnp(const Keyframe& a, const Keyframe& b, const std::vector<cv::DMatch>& matches,
@@ -113,13 +101,11 @@ void VerifyPnp(const Keyframe& a, const Keyframe& b, const std::vector<cv::DMatc
   result->T_a_b = T_b_a.inverse();
   std::vector<Eigen::Vector3d> points_a;
   std::vector<Eigen::Vector2d> pixels_b;
-  double error_sum = 0.0;
   for (int i : inliers) {
     points_a.emplace_back(object[i].x, object[i].y, object[i].z);
     pixels_b.emplace_back(image[i].x, image[i].y);
-    error_sum += (Project(b.intrinsics, T_b_a * points_a.back()) - pixels_b.back()).norm();
   }
-  result->mean_reprojection_px = error_sum / inliers.size();
+  result->mean_reprojection_px = MeanReprojectionPx(T_b_a, points_a, pixels_b, b.intrinsics);
   result->has_pose = true;
   result->metric = true;
   if (result->mean_reprojection_px > options.max_mean_reprojection_px) {
@@ -192,6 +178,27 @@ std::vector<cv::DMatch> MatchKeyframes(const Keyframe& a, const Keyframe& b,
 }
 
 }  // namespace
+
+cv::Matx33d CameraMatrix(const sensor::PinholeIntrinsics& in) {
+  return {in.fx, 0.0, in.cx, 0.0, in.fy, in.cy, 0.0, 0.0, 1.0};
+}
+
+common::Rigid3d FromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec) {
+  const Eigen::Vector3d r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
+  const double angle = r.norm();
+  const Eigen::Quaterniond q = angle > 0.0 ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, r / angle))
+                                           : Eigen::Quaterniond::Identity();
+  return common::Rigid3d(
+      Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)), q);
+}
+
+void ToRvecTvec(const common::Rigid3d& pose, cv::Mat* rvec, cv::Mat* tvec) {
+  const Eigen::AngleAxisd rotation(pose.rotation());
+  const Eigen::Vector3d r = rotation.angle() * rotation.axis();
+  const Eigen::Vector3d& t = pose.translation();
+  *rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
+  *tvec = (cv::Mat_<double>(3, 1) << t.x(), t.y(), t.z());
+}
 
 bool VerificationOptions::IsValid(std::string* error) const {
   if (min_inliers < 6 || grid_cols < 1 || grid_rows < 1 || min_occupied_cells < 0 ||

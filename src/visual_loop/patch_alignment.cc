@@ -1,11 +1,11 @@
 #include "fusemap/visual_loop/patch_alignment.h"
 
-#include <cmath>
-#include <vector>
-
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 #include <opencv2/calib3d.hpp>
+#include <vector>
 
 #include "fusemap/visual_loop/pose_covariance.h"
 
@@ -95,10 +95,11 @@ Eigen::Vector3d SurfaceNormal(const CameraImage& a, const Eigen::Vector2d& pixel
 }  // namespace
 
 bool PatchAlignmentOptions::IsValid(std::string* error) const {
-  if (half_window_px < 2 || plane_half_window_px < 2 || max_iterations < 1 || max_points < 6 ||
-      !(max_shift_px > 0.0) || !(min_gradient >= 0.0)) {
+  if (half_window_px < 2 || plane_half_window_px < 2 || max_iterations < 1 || min_points < 6 ||
+      max_points < min_points || !(max_shift_px > 0.0) || !(min_gradient >= 0.0)) {
     *error =
-        "patch alignment: windows >= 2 px, max_iterations >= 1, max_points >= 6, max_shift_px > 0";
+        "patch alignment: windows >= 2 px, max_iterations >= 1, 6 <= min_points <= max_points, "
+        "max_shift_px > 0";
     return false;
   }
   return true;
@@ -145,7 +146,6 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
   for (int iteration = 0; iteration < options.max_iterations; ++iteration) {
     Eigen::Matrix4d hessian = Eigen::Matrix4d::Zero();
     Eigen::Vector4d gradient = Eigen::Vector4d::Zero();
-    Eigen::Matrix2d structure = Eigen::Matrix2d::Zero();
     for (k = 0; k < n; ++k) {
       double value;
       Eigen::Vector2d image_gradient;
@@ -156,11 +156,12 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
       const double residual = value - (gain * template_a[k] + offset);
       hessian += jacobian * jacobian.transpose();
       gradient += jacobian * residual;
-      structure += image_gradient * image_gradient.transpose();
     }
     if (iteration == 0) {
+      // The shift's block of the Hessian is the patch's structure tensor (sum of g g^T).
+      const Eigen::Matrix2d structure = hessian.topLeftCorner<2, 2>() / n;
       const double weakest =
-          Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(structure / n).eigenvalues()(0);
+          Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(structure).eigenvalues()(0);
       if (!(weakest >= options.min_gradient * options.min_gradient)) return std::nullopt;
     }
     const Eigen::Vector4d step = hessian.ldlt().solve(-gradient);
@@ -182,7 +183,7 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
 
 int RefineByPatchAlignment(const Keyframe& a, const CameraImage& image_a, const Keyframe& b,
                            const CameraImage& image_b, const PatchAlignmentOptions& options,
-                           int min_points, VerificationResult* result) {
+                           VerificationResult* result) {
   if (!result->verified || !result->metric) return 0;
   const common::Rigid3d T_b_a = result->T_a_b.inverse();
   std::vector<cv::Point3f> object;
@@ -206,31 +207,18 @@ int RefineByPatchAlignment(const Keyframe& a, const CameraImage& image_a, const 
     points_a.push_back(p.cast<double>());
   }
   const int aligned_points = static_cast<int>(object.size());
-  if (aligned_points < std::max(min_points, 6)) return aligned_points;
-  const Eigen::AngleAxisd rotation(T_b_a.rotation());
-  const Eigen::Vector3d r = rotation.angle() * rotation.axis();
-  cv::Mat rvec = (cv::Mat_<double>(3, 1) << r.x(), r.y(), r.z());
-  cv::Mat tvec = (cv::Mat_<double>(3, 1) << T_b_a.translation().x(), T_b_a.translation().y(),
-                  T_b_a.translation().z());
-  const sensor::PinholeIntrinsics& in = b.intrinsics;
-  const cv::Matx33d K(in.fx, 0.0, in.cx, 0.0, in.fy, in.cy, 0.0, 0.0, 1.0);
-  cv::solvePnPRefineLM(object, image, K, cv::noArray(), rvec, tvec);
-  const Eigen::Vector3d refined_r(rvec.at<double>(0), rvec.at<double>(1), rvec.at<double>(2));
-  const double angle = refined_r.norm();
-  const Eigen::Quaterniond q = angle > 0.0
-                                   ? Eigen::Quaterniond(Eigen::AngleAxisd(angle, refined_r / angle))
-                                   : Eigen::Quaterniond::Identity();
-  const common::Rigid3d refined_T_b_a(
-      Eigen::Vector3d(tvec.at<double>(0), tvec.at<double>(1), tvec.at<double>(2)), q);
+  if (aligned_points < std::max(options.min_points, 6)) return aligned_points;
+  cv::Mat rvec;
+  cv::Mat tvec;
+  ToRvecTvec(T_b_a, &rvec, &tvec);
+  cv::solvePnPRefineLM(object, image, CameraMatrix(b.intrinsics), cv::noArray(), rvec, tvec);
+  const common::Rigid3d refined_T_b_a = FromRvecTvec(rvec, tvec);
   std::vector<Eigen::Vector2d> pixels_b;
-  double error_sum = 0.0;
-  for (int i = 0; i < aligned_points; ++i) {
-    pixels_b.emplace_back(image[i].x, image[i].y);
-    error_sum += (Project(in, refined_T_b_a * points_a[i]) - pixels_b.back()).norm();
-  }
+  for (const cv::Point2f& pixel : image) pixels_b.emplace_back(pixel.x, pixel.y);
   result->T_a_b = refined_T_b_a.inverse();
-  result->mean_reprojection_px = error_sum / aligned_points;
-  result->covariance = PnpCovariance(result->T_a_b, points_a, pixels_b, in);
+  result->mean_reprojection_px =
+      MeanReprojectionPx(refined_T_b_a, points_a, pixels_b, b.intrinsics);
+  result->covariance = PnpCovariance(result->T_a_b, points_a, pixels_b, b.intrinsics);
   return aligned_points;
 }
 

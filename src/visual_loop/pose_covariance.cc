@@ -20,6 +20,18 @@ Eigen::Vector2d Project(const sensor::PinholeIntrinsics& intrinsics, const Eigen
   return {intrinsics.fx * p.x() / p.z() + intrinsics.cx, intrinsics.fy * p.y() / p.z() + intrinsics.cy};
 }
 
+double MeanReprojectionPx(const common::Rigid3d& T_b_a,
+                          const std::vector<Eigen::Vector3d>& points_a,
+                          const std::vector<Eigen::Vector2d>& pixels_b,
+                          const sensor::PinholeIntrinsics& intrinsics_b) {
+  assert(points_a.size() == pixels_b.size() && !points_a.empty());
+  double error_sum = 0.0;
+  for (size_t i = 0; i < points_a.size(); ++i) {
+    error_sum += (Project(intrinsics_b, T_b_a * points_a[i]) - pixels_b[i]).norm();
+  }
+  return error_sum / static_cast<double>(points_a.size());
+}
+
 Matrix6d PnpCovariance(const common::Rigid3d& T_a_b, const std::vector<Eigen::Vector3d>& points_a,
                        const std::vector<Eigen::Vector2d>& pixels_b,
                        const sensor::PinholeIntrinsics& intrinsics_b) {

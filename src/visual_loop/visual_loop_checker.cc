@@ -18,10 +18,6 @@ bool VisualLoopCheckerOptions::IsValid(std::string* error) const {
     *error = "visual loop checker: contradiction thresholds must be positive";
     return false;
   }
-  if (patch_alignment_min_points < 6) {
-    *error = "visual loop checker: patch_alignment_min_points must be >= 6 (a pose from points)";
-    return false;
-  }
   return true;
 }
 
@@ -114,11 +110,11 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
   const auto image_match = latest_images_.find(match_keyframe);
   const auto image_query = latest_images_.find(query_keyframe);
   if (image_match != latest_images_.end() && image_query != latest_images_.end()) {
-    out.aligned_points = RefineByPatchAlignment(*match, image_match->second, *query,
-                                                image_query->second, options_.patch_alignment,
-                                                options_.patch_alignment_min_points, &result);
+    out.aligned_points =
+        RefineByPatchAlignment(*match, image_match->second, *query, image_query->second,
+                               options_.patch_alignment, &result);
     out.refined_on_pixels =
-        result.verified && out.aligned_points >= options_.patch_alignment_min_points;
+        result.verified && out.aligned_points >= options_.patch_alignment.min_points;
   }
   std::string rejection;
   out.constraint = ToConstraint(*match, *query, result, &rejection);

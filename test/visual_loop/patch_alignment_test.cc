@@ -154,7 +154,7 @@ TEST(PatchAlignmentTest, RefinedPnpIsCloserToTheTruth) {
   ASSERT_TRUE(result.verified) << result.reason;
   const double before_m = (result.T_a_b.translation() - T_a_b.translation()).norm();
   const int aligned =
-      RefineByPatchAlignment(a, views.a, b, views.b, PatchAlignmentOptions{}, 20, &result);
+      RefineByPatchAlignment(a, views.a, b, views.b, PatchAlignmentOptions{}, &result);
   // Nearly all of those tried (every inlier, or max_points spread over them) align.
   const int tried = std::min(result.inliers, PatchAlignmentOptions{}.max_points);
   EXPECT_LE(aligned, tried);
@@ -178,7 +178,7 @@ TEST(PatchAlignmentTest, RefineAlignsAtMostMaxPointsSpreadOverTheInliers) {
   PatchAlignmentOptions options;
   options.max_points = 40;
   const int aligned =
-      RefineByPatchAlignment(keyframes.a, views.a, keyframes.b, views.b, options, 20, &result);
+      RefineByPatchAlignment(keyframes.a, views.a, keyframes.b, views.b, options, &result);
   EXPECT_LE(aligned, 40);
   EXPECT_GE(aligned, 32);
   EXPECT_LT((result.T_a_b.translation() - T_a_b.translation()).norm(), 0.002);
@@ -194,8 +194,7 @@ TEST(PatchAlignmentTest, RefineLeavesAResultWithTooFewAlignedPoints) {
   ASSERT_TRUE(result.verified) << result.reason;
   const VerificationResult before = result;
   views.b.gray.setTo(cv::Scalar(128));  // nothing to align against
-  EXPECT_EQ(RefineByPatchAlignment(a, views.a, b, views.b, PatchAlignmentOptions{}, 20, &result),
-            0);
+  EXPECT_EQ(RefineByPatchAlignment(a, views.a, b, views.b, PatchAlignmentOptions{}, &result), 0);
   EXPECT_EQ(result.T_a_b.translation(), before.T_a_b.translation());
   EXPECT_EQ(result.mean_reprojection_px, before.mean_reprojection_px);
 }
@@ -211,6 +210,12 @@ TEST(PatchAlignmentOptionsTest, Validates) {
   EXPECT_FALSE(bad.IsValid(&error));
   bad = PatchAlignmentOptions{};
   bad.max_points = 5;
+  EXPECT_FALSE(bad.IsValid(&error));
+  bad = PatchAlignmentOptions{};
+  bad.min_points = 5;
+  EXPECT_FALSE(bad.IsValid(&error));
+  bad = PatchAlignmentOptions{};
+  bad.min_points = bad.max_points + 1;
   EXPECT_FALSE(bad.IsValid(&error));
 }
 

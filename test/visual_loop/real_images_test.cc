@@ -110,7 +110,7 @@ TEST(RealImagesTest, IclLivingRoomPatchRefinementKeepsTheTrueRelativePose) {
     const double before_m = (result.T_a_b.translation() - truth.translation()).norm();
     const double before_deg = testing::AngleBetweenDeg(result.T_a_b, truth);
     const int aligned =
-        RefineByPatchAlignment(a, image_a, b, image_b, PatchAlignmentOptions{}, 20, &result);
+        RefineByPatchAlignment(a, image_a, b, image_b, PatchAlignmentOptions{}, &result);
     const double error_m = (result.T_a_b.translation() - truth.translation()).norm();
     const double error_deg = testing::AngleBetweenDeg(result.T_a_b, truth);
     std::cout << "ICL 0 -> " << j << " refined on pixels: " << aligned << " of " << result.inliers
@@ -167,10 +167,10 @@ TEST(RealImagesTest, TumPairPatchRefinementKeepsThePoseConsistent) {
   VerificationResult backward = VerifyKeyframes(keyframes[1], keyframes[0], VerificationOptions{});
   ASSERT_TRUE(forward.verified && backward.verified);
   const common::Rigid3d loop_before = forward.T_a_b * backward.T_a_b;
-  const int aligned_forward = RefineByPatchAlignment(
-      keyframes[0], images[0], keyframes[1], images[1], PatchAlignmentOptions{}, 20, &forward);
+  const int aligned_forward = RefineByPatchAlignment(keyframes[0], images[0], keyframes[1],
+                                                     images[1], PatchAlignmentOptions{}, &forward);
   const int aligned_backward = RefineByPatchAlignment(
-      keyframes[1], images[1], keyframes[0], images[0], PatchAlignmentOptions{}, 20, &backward);
+      keyframes[1], images[1], keyframes[0], images[0], PatchAlignmentOptions{}, &backward);
   const common::Rigid3d loop = forward.T_a_b * backward.T_a_b;
   const double loop_deg =
       loop.rotation().angularDistance(Eigen::Quaterniond::Identity()) * 180.0 / M_PI;

@@ -105,7 +105,7 @@ TEST(VisualLoopCheckerPixelsTest, RefinesOnlyBetweenTheTwoLatestKeyframes) {
     const VisualCheckResult latest = checker->CheckPlace(1, 0, truth);
     ASSERT_EQ(latest.check, VisualCheck::kVerified) << latest.reason;
     EXPECT_EQ(latest.refined_on_pixels, enabled);
-    EXPECT_EQ(latest.aligned_points >= options.patch_alignment_min_points, enabled)
+    EXPECT_EQ(latest.aligned_points >= options.patch_alignment.min_points, enabled)
         << latest.aligned_points;
     EXPECT_NEAR(latest.constraint->T_match_base_query_base.x(), 0.3, 0.002);
     // Two more keyframes: 0 and 1 are no longer the latest, their pixels are gone.

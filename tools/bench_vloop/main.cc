@@ -194,7 +194,7 @@ int Benchmark(const Args& args) {
       visual_loop::VerificationResult refined = result;
       const int aligned =
           visual_loop::RefineByPatchAlignment(stored[p], stored_images[p], keyframe, query_image,
-                                              visual_loop::PatchAlignmentOptions{}, 20, &refined);
+                                              visual_loop::PatchAlignmentOptions{}, &refined);
       refine_ms.push_back(ThreadCpuMs() - t4);
       aligned_points += aligned;
       inliers += result.inliers;

@@ -65,6 +65,12 @@ VerificationResult VerifyKeyframes(const Keyframe& a, const Keyframe& b,
 int CountMatchesExplained(const Keyframe& a, const Keyframe& b, const common::Rigid3d& T_a_b,
                           const VerificationOptions& options);
 
+// OpenCV's camera matrix of the intrinsics, and a pose in solvePnP's terms (rotation vector,
+// translation; CV_64F 3 x 1) and back: what the PnP steps here and in RefineByPatchAlignment share.
+cv::Matx33d CameraMatrix(const sensor::PinholeIntrinsics& intrinsics);
+common::Rigid3d FromRvecTvec(const cv::Mat& rvec, const cv::Mat& tvec);
+void ToRvecTvec(const common::Rigid3d& pose, cv::Mat* rvec, cv::Mat* tvec);
+
 }  // namespace visual_loop
 }  // namespace fusemap
 

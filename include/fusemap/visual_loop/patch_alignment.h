@@ -30,8 +30,10 @@ struct PatchAlignmentOptions {
   // when its patch has too little texture to be placed, or when it does not converge.
   double max_shift_px = 3.0;
   double min_gradient = 4.0;  // grey levels per pixel, rms over the patch, in its weaker direction
-  // RefineByPatchAlignment aligns at most this many inliers, spread over all of them: a pose
-  // needs no more, and each costs ~0.03 ms (real 640 x 480 images have 250-500 inliers).
+  // RefineByPatchAlignment aligns at most max_points inliers, spread over all of them: a pose
+  // needs no more, and each costs ~0.03 ms (real 640 x 480 images have 250-500 inliers); it
+  // re-estimates the pose only when at least min_points of them align.
+  int min_points = 20;
   int max_points = 300;
   bool IsValid(std::string* error) const;
 };
@@ -59,10 +61,10 @@ std::optional<Eigen::Vector2d> AlignPatch(const CameraImage& a, const CameraImag
 // pixels: each inlier's point of a (at most max_points of them) is aligned into b (AlignPatch)
 // and the pose re-estimated from those positions; the covariance and mean reprojection error
 // follow. Returns how many inliers were aligned; the result is left as it was when fewer than
-// min_points were.
+// options.min_points were.
 int RefineByPatchAlignment(const Keyframe& a, const CameraImage& image_a, const Keyframe& b,
                            const CameraImage& image_b, const PatchAlignmentOptions& options,
-                           int min_points, VerificationResult* result);
+                           VerificationResult* result);
 
 }  // namespace visual_loop
 }  // namespace fusemap

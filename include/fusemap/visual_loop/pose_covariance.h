@@ -28,6 +28,13 @@ Matrix6d PnpCovariance(const common::Rigid3d& T_a_b, const std::vector<Eigen::Ve
 // Pixel of p_camera (z > 0) through the pinhole.
 Eigen::Vector2d Project(const sensor::PinholeIntrinsics& intrinsics, const Eigen::Vector3d& p_camera);
 
+// Mean distance in pixels between points_a carried into camera b by T_b_a and projected, and
+// pixels_b (as many, at least one).
+double MeanReprojectionPx(const common::Rigid3d& T_b_a,
+                          const std::vector<Eigen::Vector3d>& points_a,
+                          const std::vector<Eigen::Vector2d>& pixels_b,
+                          const sensor::PinholeIntrinsics& intrinsics_b);
+
 }  // namespace visual_loop
 }  // namespace fusemap
 

@@ -36,11 +36,10 @@ struct VisualLoopCheckerOptions {
   double max_overlap_yaw_rad = 0.5;
   int max_contradiction_inliers = 12;
   // The images of the two latest keyframes are held, and a match between them (the camera's
-  // motion from one keyframe to the next) is refined on their pixels (RefineByPatchAlignment)
-  // when at least patch_alignment_min_points of its inliers align. Older keyframes keep no pixels.
+  // motion from one keyframe to the next) is refined on their pixels (RefineByPatchAlignment,
+  // when at least patch_alignment.min_points of its inliers align). Older keyframes keep no pixels.
   bool refine_latest_on_pixels = true;
   PatchAlignmentOptions patch_alignment;
-  int patch_alignment_min_points = 20;
   bool IsValid(std::string* error) const;
 };
 
