@@ -151,7 +151,8 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 
 std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCandidates(
     const ScanSet& scans, const SearchParameters& params, bool with_prior) const {
-  const int step = grids_.Get(grids_.max_depth()).width_cells();
+  const PrecomputationGrid2D& grid = grids_.Get(grids_.max_depth());
+  const int step = grid.width_cells();
   std::vector<Candidate2D> candidates;
   size_t count = 0;
   for (const SearchParameters::LinearBounds& bounds : params.linear_bounds) {
@@ -160,47 +161,64 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
              ((bounds.max_y - bounds.min_y) / step + 1);
   }
   candidates.reserve(count);  // thousands per local SLAM wide search
+  std::vector<long> sums;
   for (int i = 0; i < params.num_scans; ++i) {
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
-    for (int x = bounds.min_x; x <= bounds.max_x; x += step) {
-      for (int y = bounds.min_y; y <= bounds.max_y; y += step) {
-        candidates.emplace_back(i, x, y, params);
+    if (bounds.max_x < bounds.min_x || bounds.max_y < bounds.min_y) continue;
+    const int num_x = (bounds.max_x - bounds.min_x) / step + 1;
+    const int num_y = (bounds.max_y - bounds.min_y) / step + 1;
+    sums.resize(static_cast<size_t>(num_x) * num_y);
+    grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
+                              Eigen::Array2i(bounds.min_x, bounds.min_y), step, num_x, num_y,
+                              sums.data());
+    const int num_points = static_cast<int>(scans.scans[i].size());
+    for (int xi = 0; xi < num_x; ++xi) {
+      for (int yi = 0; yi < num_y; ++yi) {
+        candidates.emplace_back(i, bounds.min_x + xi * step, bounds.min_y + yi * step, params);
+        SetScore(grid, sums[static_cast<size_t>(xi) * num_y + yi], num_points, with_prior,
+                 &candidates.back());
       }
     }
   }
-  ScoreCandidates(grids_.Get(grids_.max_depth()), scans, with_prior, &candidates);
+  std::sort(candidates.begin(), candidates.end(), std::greater<Candidate2D>());
   return candidates;
 }
 
 void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& grid,
                                                    const ScanSet& scans, bool with_prior,
                                                    std::vector<Candidate2D>* candidates) const {
-  // Offset of the cell in [start, start + width) nearest to 0.
-  const auto nearest_cells = [](int start, int width) {
-    return start > 0 ? start : (start + width - 1 < 0 ? start + width - 1 : 0);
-  };
   for (Candidate2D& candidate : *candidates) {
     const int i = candidate.scan_index;
     const long sum =
         grid.SumValues(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
                        Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells));
-    candidate.score = PrecomputationScore(sum, static_cast<int>(scans.scans[i].size()));
-    if (!with_prior) continue;
-    // The candidate stands for the offsets [x, x + width) x [y, y + width); the prior is
-    // largest at the one nearest the centre, so score times that factor still bounds every
-    // leaf below it and the search stays exact.
-    const int width = grid.width_cells();
-    // sqrt of the exact integer sum, not std::hypot: the same distance (correctly rounded)
-    // at a fraction of the cost, and this runs for every candidate of local SLAM's wide search.
-    const long nx = nearest_cells(candidate.x_offset_cells, width);
-    const long ny = nearest_cells(candidate.y_offset_cells, width);
-    const double distance_m =
-        limits_.resolution_m * std::sqrt(static_cast<double>(nx * nx + ny * ny));
-    const double cost = distance_m * options_.translation_delta_cost_weight +
-                        std::abs(candidate.angle_rad) * options_.rotation_delta_cost_weight;
-    candidate.score *= std::exp(-cost * cost);
+    SetScore(grid, sum, static_cast<int>(scans.scans[i].size()), with_prior, &candidate);
   }
   std::sort(candidates->begin(), candidates->end(), std::greater<Candidate2D>());
+}
+
+void FastCorrelativeScanMatcher2D::SetScore(const PrecomputationGrid2D& grid, long value_sum,
+                                            int num_points, bool with_prior,
+                                            Candidate2D* candidate) const {
+  candidate->score = PrecomputationScore(value_sum, num_points);
+  if (!with_prior) return;
+  // Offset of the cell in [start, start + width) nearest to 0.
+  const auto nearest_cells = [](int start, int width) {
+    return start > 0 ? start : (start + width - 1 < 0 ? start + width - 1 : 0);
+  };
+  // The candidate stands for the offsets [x, x + width) x [y, y + width); the prior is
+  // largest at the one nearest the centre, so score times that factor still bounds every
+  // leaf below it and the search stays exact.
+  const int width = grid.width_cells();
+  // sqrt of the exact integer sum, not std::hypot: the same distance (correctly rounded)
+  // at a fraction of the cost, and this runs for every candidate of local SLAM's wide search.
+  const long nx = nearest_cells(candidate->x_offset_cells, width);
+  const long ny = nearest_cells(candidate->y_offset_cells, width);
+  const double distance_m =
+      limits_.resolution_m * std::sqrt(static_cast<double>(nx * nx + ny * ny));
+  const double cost = distance_m * options_.translation_delta_cost_weight +
+                      std::abs(candidate->angle_rad) * options_.rotation_delta_cost_weight;
+  candidate->score *= std::exp(-cost * cost);
 }
 
 // Depth-first branch and bound (Hess et al. 2016, Algorithm 3). A candidate at depth d covers
@@ -220,15 +238,24 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     // Reused storage: thousands of candidates are expanded per search.
     std::vector<Candidate2D>& children = (*children_by_depth)[depth - 1];
     children.clear();
-    for (int dx : {0, half_width}) {
-      if (candidate.x_offset_cells + dx > bounds.max_x) break;
-      for (int dy : {0, half_width}) {
-        if (candidate.y_offset_cells + dy > bounds.max_y) break;
-        children.emplace_back(candidate.scan_index, candidate.x_offset_cells + dx,
-                              candidate.y_offset_cells + dy, params);
+    // The children at {x, x + half_width} x {y, y + half_width} that lie in the window.
+    const int i = candidate.scan_index;
+    const int num_x = candidate.x_offset_cells + half_width <= bounds.max_x ? 2 : 1;
+    const int num_y = candidate.y_offset_cells + half_width <= bounds.max_y ? 2 : 1;
+    const PrecomputationGrid2D& grid = grids_.Get(depth - 1);
+    long sums[4];
+    grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
+                              Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells),
+                              half_width, num_x, num_y, sums);
+    const int num_points = static_cast<int>(scans.scans[i].size());
+    for (int xi = 0; xi < num_x; ++xi) {
+      for (int yi = 0; yi < num_y; ++yi) {
+        children.emplace_back(i, candidate.x_offset_cells + xi * half_width,
+                              candidate.y_offset_cells + yi * half_width, params);
+        SetScore(grid, sums[xi * num_y + yi], num_points, with_prior, &children.back());
       }
     }
-    ScoreCandidates(grids_.Get(depth - 1), scans, with_prior, &children);
+    std::sort(children.begin(), children.end(), std::greater<Candidate2D>());
     const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score,
                                                   with_prior, children_by_depth);
     if (child_best.score > best.score) best = child_best;

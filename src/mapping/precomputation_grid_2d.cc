@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <type_traits>
 #include <utility>
 
 namespace fusemap {
@@ -242,6 +243,80 @@ long PrecomputationGrid2D::SumValues(const std::vector<Eigen::Array2i>& cells,
                   ((shifted.x() >> block_shift_) - min_block_.x())];
   }
   return sum;
+}
+
+void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i>& cells,
+                                                const Eigen::Array2i& cells_min,
+                                                const Eigen::Array2i& cells_max,
+                                                const Eigen::Array2i& first, int step, int num_x,
+                                                int num_y, long* sums) const {
+  assert(step > 0 && num_x >= 0 && num_y >= 0);
+  // A step of whole blocks moves every cell by the same number of blocks (floor division by
+  // a power of two), so one block index per point serves all the offsets.
+  const bool whole_blocks = (step & ((1 << block_shift_) - 1)) == 0;
+  const Eigen::Array2i low = cells_min + first;
+  const Eigen::Array2i high = cells_max + first + step * Eigen::Array2i(num_x - 1, num_y - 1);
+  const bool on_grid = whole_blocks && num_x > 0 && num_y > 0 &&
+                       (low.x() >> block_shift_) >= min_block_.x() &&
+                       (low.y() >> block_shift_) >= min_block_.y() &&
+                       (high.x() >> block_shift_) < min_block_.x() + size_x_ &&
+                       (high.y() >> block_shift_) < min_block_.y() + size_y_;
+  if (!on_grid) {
+    for (int i = 0; i < num_x; ++i) {
+      for (int j = 0; j < num_y; ++j) {
+        sums[i * num_y + j] =
+            SumValues(cells, cells_min, cells_max, first + step * Eigen::Array2i(i, j));
+      }
+    }
+    return;
+  }
+  const int block_step = step >> block_shift_;
+  const long row_step = static_cast<long>(block_step) * size_x_;
+  // Element of values_ for `cell` at offset `first`.
+  const auto at = [&](const Eigen::Array2i& cell) {
+    const Eigen::Array2i shifted = cell + first;
+    return values_.data() +
+           static_cast<long>((shifted.y() >> block_shift_) - min_block_.y()) * size_x_ +
+           ((shifted.x() >> block_shift_) - min_block_.x());
+  };
+  // A column of offsets (one i, every j) per pass over the points, its sums in registers.
+  const auto column_pass = [&](auto num_rows, int i) {
+    constexpr int kRows = decltype(num_rows)::value;
+    long column_sums[kRows] = {};
+    for (const Eigen::Array2i& cell : cells) {
+      const uint8_t* const value = at(cell) + i * block_step;
+      for (int j = 0; j < kRows; ++j) column_sums[j] += value[j * row_step];
+    }
+    std::copy_n(column_sums, kRows, sums + i * num_y);
+  };
+  for (int i = 0; i < num_x; ++i) {
+    switch (num_y) {
+      case 1:
+        column_pass(std::integral_constant<int, 1>(), i);
+        break;
+      case 2:
+        column_pass(std::integral_constant<int, 2>(), i);
+        break;
+      case 3:
+        column_pass(std::integral_constant<int, 3>(), i);
+        break;
+      case 4:
+        column_pass(std::integral_constant<int, 4>(), i);
+        break;
+      case 5:
+        column_pass(std::integral_constant<int, 5>(), i);
+        break;
+      case 6:
+        column_pass(std::integral_constant<int, 6>(), i);
+        break;
+      default:
+        for (int j = 0; j < num_y; ++j) {
+          long sum = 0;
+          for (const Eigen::Array2i& cell : cells) sum += at(cell)[i * block_step + j * row_step];
+          sums[i * num_y + j] = sum;
+        }
+    }
+  }
 }
 
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid, int max_depth,

@@ -126,6 +126,54 @@ TEST(PrecomputationGrid2DTest, SumValuesIsTheSumOfGetValue) {
   EXPECT_GT(checked_inside, 10);
 }
 
+// SumValuesOverOffsets gives SumValues at each offset of its lattice: steps of whole blocks
+// (its per-point path) and of part blocks (per offset), 1 to 8 rows (a fixed count of sums
+// per pass up to 6, a general one beyond), on the stored area, across its edge and off it.
+TEST(PrecomputationGrid2DTest, SumValuesOverOffsetsIsSumValuesAtEachOffset) {
+  const ProbabilityGrid grid = MakeRandomGrid(70, 50, 5);
+  const PrecomputationGridStack2D stack(grid, 6);
+  std::mt19937 rng(13);
+  std::uniform_int_distribution<int> coordinate(0, 24);
+  std::vector<Eigen::Array2i> cells;
+  for (int i = 0; i < 30; ++i) cells.emplace_back(coordinate(rng), coordinate(rng) / 2);
+  Eigen::Array2i min_cell = cells.front();
+  Eigen::Array2i max_cell = cells.front();
+  for (const Eigen::Array2i& cell : cells) {
+    min_cell = min_cell.min(cell);
+    max_cell = max_cell.max(cell);
+  }
+  int checked_inside = 0;
+  for (int depth = 0; depth <= stack.max_depth(); ++depth) {
+    const PrecomputationGrid2D& level = stack.Get(depth);
+    for (int step : {1, 2, 3, 4, 8, 16}) {
+      for (int num_x : {1, 2, 6}) {
+        for (int num_y : {1, 2, 3, 5, 6, 8}) {
+          for (const Eigen::Array2i& first :
+               {Eigen::Array2i(3, 2), Eigen::Array2i(-5, 1), Eigen::Array2i(40, 30)}) {
+            std::vector<long> sums(static_cast<size_t>(num_x) * num_y, -1);
+            level.SumValuesOverOffsets(cells, min_cell, max_cell, first, step, num_x, num_y,
+                                       sums.data());
+            for (int i = 0; i < num_x; ++i) {
+              for (int j = 0; j < num_y; ++j) {
+                const Eigen::Array2i offset = first + step * Eigen::Array2i(i, j);
+                ASSERT_EQ(sums[i * num_y + j], level.SumValues(cells, min_cell, max_cell, offset))
+                    << "depth " << depth << " step " << step << " offset " << offset.x() << " "
+                    << offset.y();
+              }
+            }
+            const Eigen::Array2i last = first + step * Eigen::Array2i(num_x - 1, num_y - 1);
+            if ((first + min_cell).minCoeff() >= 0 && (last + max_cell).x() < 70 &&
+                (last + max_cell).y() < 50) {
+              ++checked_inside;
+            }
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked_inside, 100);
+}
+
 TEST(PrecomputationGrid2DTest, SingleOccupiedCellSpreadsBackwards) {
   MapLimits limits;
   limits.num_x_cells = 8;

@@ -95,6 +95,10 @@ class FastCorrelativeScanMatcher2D {
       const ScanSet& scans, const SearchParameters& params, bool with_prior) const;
   void ScoreCandidates(const PrecomputationGrid2D& grid, const ScanSet& scans, bool with_prior,
                        std::vector<Candidate2D>* candidates) const;
+  // The candidate's score from the sum of its points' values in `grid` (times the prior's
+  // factor with `with_prior`).
+  void SetScore(const PrecomputationGrid2D& grid, long value_sum, int num_points, bool with_prior,
+                Candidate2D* candidate) const;
   // (*children_by_depth)[d] holds the children scored at depth d (one expansion at a time).
   Candidate2D BranchAndBound(const ScanSet& scans, const SearchParameters& params,
                              const std::vector<Candidate2D>& candidates, int depth,
