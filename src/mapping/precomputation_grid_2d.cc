@@ -279,35 +279,48 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
            static_cast<long>((shifted.y() >> block_shift_) - min_block_.y()) * size_x_ +
            ((shifted.x() >> block_shift_) - min_block_.x());
   };
-  // A column of offsets (one i, every j) per pass over the points, its sums in registers.
-  const auto column_pass = [&](auto num_rows, int i) {
+  // Columns first_column .. + kColumns - 1 of offsets (every j of each) per pass over the
+  // points, their sums in registers.
+  const auto pass = [&](auto num_columns, auto num_rows, int first_column) {
+    constexpr int kColumns = decltype(num_columns)::value;
     constexpr int kRows = decltype(num_rows)::value;
-    long column_sums[kRows] = {};
+    long pass_sums[kColumns][kRows] = {};
     for (const Eigen::Array2i& cell : cells) {
-      const uint8_t* const value = at(cell) + i * block_step;
-      for (int j = 0; j < kRows; ++j) column_sums[j] += value[j * row_step];
+      const uint8_t* const value = at(cell) + first_column * block_step;
+      for (int i = 0; i < kColumns; ++i) {
+        for (int j = 0; j < kRows; ++j) pass_sums[i][j] += value[i * block_step + j * row_step];
+      }
     }
-    std::copy_n(column_sums, kRows, sums + i * num_y);
+    for (int i = 0; i < kColumns; ++i) {
+      std::copy_n(pass_sums[i], kRows, sums + (first_column + i) * num_y);
+    }
   };
+  using One = std::integral_constant<int, 1>;
+  using Two = std::integral_constant<int, 2>;
+  // A branch and bound expansion's four children in one pass.
+  if (num_x == 2 && num_y == 2) {
+    pass(Two(), Two(), 0);
+    return;
+  }
   for (int i = 0; i < num_x; ++i) {
     switch (num_y) {
       case 1:
-        column_pass(std::integral_constant<int, 1>(), i);
+        pass(One(), One(), i);
         break;
       case 2:
-        column_pass(std::integral_constant<int, 2>(), i);
+        pass(One(), Two(), i);
         break;
       case 3:
-        column_pass(std::integral_constant<int, 3>(), i);
+        pass(One(), std::integral_constant<int, 3>(), i);
         break;
       case 4:
-        column_pass(std::integral_constant<int, 4>(), i);
+        pass(One(), std::integral_constant<int, 4>(), i);
         break;
       case 5:
-        column_pass(std::integral_constant<int, 5>(), i);
+        pass(One(), std::integral_constant<int, 5>(), i);
         break;
       case 6:
-        column_pass(std::integral_constant<int, 6>(), i);
+        pass(One(), std::integral_constant<int, 6>(), i);
         break;
       default:
         for (int j = 0; j < num_y; ++j) {
