@@ -251,17 +251,17 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
                                                 const Eigen::Array2i& first, int step, int num_x,
                                                 int num_y, long* sums) const {
   assert(step > 0 && num_x >= 0 && num_y >= 0);
+  if (num_x == 0 || num_y == 0) return;
   // A step of whole blocks moves every cell by the same number of blocks (floor division by
   // a power of two), so one block index per point serves all the offsets.
   const bool whole_blocks = (step & ((1 << block_shift_) - 1)) == 0;
   const Eigen::Array2i low = cells_min + first;
   const Eigen::Array2i high = cells_max + first + step * Eigen::Array2i(num_x - 1, num_y - 1);
-  const bool on_grid = whole_blocks && num_x > 0 && num_y > 0 &&
-                       (low.x() >> block_shift_) >= min_block_.x() &&
+  const bool on_grid = (low.x() >> block_shift_) >= min_block_.x() &&
                        (low.y() >> block_shift_) >= min_block_.y() &&
                        (high.x() >> block_shift_) < min_block_.x() + size_x_ &&
                        (high.y() >> block_shift_) < min_block_.y() + size_y_;
-  if (!on_grid) {
+  if (!whole_blocks || (num_y > 6 && !on_grid)) {
     for (int i = 0; i < num_x; ++i) {
       for (int j = 0; j < num_y; ++j) {
         sums[i * num_y + j] =
@@ -272,63 +272,83 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
   }
   const int block_step = step >> block_shift_;
   const long row_step = static_cast<long>(block_step) * size_x_;
-  // Element of values_ for `cell` at offset `first`.
-  const auto at = [&](const Eigen::Array2i& cell) {
-    const Eigen::Array2i shifted = cell + first;
-    return values_.data() +
-           static_cast<long>((shifted.y() >> block_shift_) - min_block_.y()) * size_x_ +
-           ((shifted.x() >> block_shift_) - min_block_.x());
-  };
   // Columns first_column .. + kColumns - 1 of offsets (every j of each) per pass over the
-  // points, their sums in registers.
-  const auto pass = [&](auto num_columns, auto num_rows, int first_column) {
+  // points, their sums in registers. Checked: where the lattice reaches off the stored area,
+  // a point whose offsets do not all land on it adds 0 for those that miss (as GetValue);
+  // the others take the unchecked path, as on the stored area.
+  const auto pass = [&](auto num_columns, auto num_rows, auto checked, int first_column) {
     constexpr int kColumns = decltype(num_columns)::value;
     constexpr int kRows = decltype(num_rows)::value;
+    constexpr bool kChecked = decltype(checked)::value;
     long pass_sums[kColumns][kRows] = {};
     for (const Eigen::Array2i& cell : cells) {
-      const uint8_t* const value = at(cell) + first_column * block_step;
+      const Eigen::Array2i shifted = cell + first;
+      const int x = (shifted.x() >> block_shift_) - min_block_.x() + first_column * block_step;
+      const int y = (shifted.y() >> block_shift_) - min_block_.y();
+      if (!kChecked || (x >= 0 && y >= 0 && x + (kColumns - 1) * block_step < size_x_ &&
+                        y + (kRows - 1) * block_step < size_y_)) {
+        const uint8_t* const value = values_.data() + static_cast<long>(y) * size_x_ + x;
+        for (int i = 0; i < kColumns; ++i) {
+          for (int j = 0; j < kRows; ++j) pass_sums[i][j] += value[i * block_step + j * row_step];
+        }
+        continue;
+      }
       for (int i = 0; i < kColumns; ++i) {
-        for (int j = 0; j < kRows; ++j) pass_sums[i][j] += value[i * block_step + j * row_step];
+        for (int j = 0; j < kRows; ++j) {
+          const int xi = x + i * block_step;
+          const int yj = y + j * block_step;
+          if (xi < 0 || yj < 0 || xi >= size_x_ || yj >= size_y_) continue;
+          pass_sums[i][j] += values_[static_cast<size_t>(yj) * size_x_ + xi];
+        }
       }
     }
     for (int i = 0; i < kColumns; ++i) {
       std::copy_n(pass_sums[i], kRows, sums + (first_column + i) * num_y);
     }
   };
-  using One = std::integral_constant<int, 1>;
-  using Two = std::integral_constant<int, 2>;
-  // A branch and bound expansion's four children in one pass.
-  if (num_x == 2 && num_y == 2) {
-    pass(Two(), Two(), 0);
-    return;
-  }
-  for (int i = 0; i < num_x; ++i) {
-    switch (num_y) {
-      case 1:
-        pass(One(), One(), i);
-        break;
-      case 2:
-        pass(One(), Two(), i);
-        break;
-      case 3:
-        pass(One(), std::integral_constant<int, 3>(), i);
-        break;
-      case 4:
-        pass(One(), std::integral_constant<int, 4>(), i);
-        break;
-      case 5:
-        pass(One(), std::integral_constant<int, 5>(), i);
-        break;
-      case 6:
-        pass(One(), std::integral_constant<int, 6>(), i);
-        break;
-      default:
-        for (int j = 0; j < num_y; ++j) {
-          long sum = 0;
-          for (const Eigen::Array2i& cell : cells) sum += at(cell)[i * block_step + j * row_step];
-          sums[i * num_y + j] = sum;
-        }
+  const auto dispatch = [&](auto checked) {
+    using One = std::integral_constant<int, 1>;
+    using Two = std::integral_constant<int, 2>;
+    // A branch and bound expansion's four children in one pass.
+    if (num_x == 2 && num_y == 2) {
+      pass(Two(), Two(), checked, 0);
+      return;
     }
+    for (int i = 0; i < num_x; ++i) {
+      switch (num_y) {
+        case 1:
+          pass(One(), One(), checked, i);
+          break;
+        case 2:
+          pass(One(), Two(), checked, i);
+          break;
+        case 3:
+          pass(One(), std::integral_constant<int, 3>(), checked, i);
+          break;
+        case 4:
+          pass(One(), std::integral_constant<int, 4>(), checked, i);
+          break;
+        case 5:
+          pass(One(), std::integral_constant<int, 5>(), checked, i);
+          break;
+        case 6:
+          pass(One(), std::integral_constant<int, 6>(), checked, i);
+          break;
+        default:  // on the stored area (above)
+          for (int j = 0; j < num_y; ++j) {
+            long sum = 0;
+            for (const Eigen::Array2i& cell : cells) {
+              sum += GetValue(cell + first + step * Eigen::Array2i(i, j));
+            }
+            sums[i * num_y + j] = sum;
+          }
+      }
+    }
+  };
+  if (on_grid) {
+    dispatch(std::false_type());
+  } else {
+    dispatch(std::true_type());
   }
 }
 
