@@ -27,6 +27,30 @@ ProbabilityGrid MakeRandomGrid(int num_x, int num_y, unsigned seed) {
   return grid;
 }
 
+// A discretised scan of `num_cells` random cells (x in [0, max_coordinate], y in half that),
+// with its bounding box.
+struct RandomScan {
+  std::vector<Eigen::Array2i> cells;
+  Eigen::Array2i min_cell;
+  Eigen::Array2i max_cell;
+};
+
+RandomScan MakeRandomScan(int num_cells, int max_coordinate, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_int_distribution<int> coordinate(0, max_coordinate);
+  RandomScan scan;
+  for (int i = 0; i < num_cells; ++i) {
+    const int x = coordinate(rng);
+    scan.cells.emplace_back(x, coordinate(rng) / 2);
+  }
+  scan.min_cell = scan.max_cell = scan.cells.front();
+  for (const Eigen::Array2i& cell : scan.cells) {
+    scan.min_cell = scan.min_cell.min(cell);
+    scan.max_cell = scan.max_cell.max(cell);
+  }
+  return scan;
+}
+
 int NaiveWindowMax(const ProbabilityGrid& grid, const Eigen::Array2i& cell, int width) {
   int value = 0;
   for (int dy = 0; dy < width; ++dy) {
@@ -97,16 +121,7 @@ TEST(PrecomputationGrid2DTest, EveryDepthBoundsItsWindowAsDocumented) {
 TEST(PrecomputationGrid2DTest, SumValuesIsTheSumOfGetValue) {
   const ProbabilityGrid grid = MakeRandomGrid(60, 45, 7);
   const PrecomputationGridStack2D stack(grid, 6);
-  std::mt19937 rng(11);
-  std::uniform_int_distribution<int> coordinate(0, 30);
-  std::vector<Eigen::Array2i> cells;
-  for (int i = 0; i < 40; ++i) cells.emplace_back(coordinate(rng), coordinate(rng) / 2);
-  Eigen::Array2i min_cell = cells.front();
-  Eigen::Array2i max_cell = cells.front();
-  for (const Eigen::Array2i& cell : cells) {
-    min_cell = min_cell.min(cell);
-    max_cell = max_cell.max(cell);
-  }
+  const RandomScan scan = MakeRandomScan(40, 30, 11);
   int checked_inside = 0;
   for (int depth = 0; depth <= stack.max_depth(); ++depth) {
     const PrecomputationGrid2D& level = stack.Get(depth);
@@ -114,10 +129,10 @@ TEST(PrecomputationGrid2DTest, SumValuesIsTheSumOfGetValue) {
       for (int ox = -90; ox <= 70; ox += 9) {
         const Eigen::Array2i offset(ox, oy);
         long expected = 0;
-        for (const Eigen::Array2i& cell : cells) expected += level.GetValue(cell + offset);
-        ASSERT_EQ(level.SumValues(cells, min_cell, max_cell, offset), expected)
+        for (const Eigen::Array2i& cell : scan.cells) expected += level.GetValue(cell + offset);
+        ASSERT_EQ(level.SumValues(scan.cells, scan.min_cell, scan.max_cell, offset), expected)
             << "depth " << depth << " offset " << ox << " " << oy;
-        if (ox >= 0 && oy >= 0 && ox + max_cell.x() < 60 && oy + max_cell.y() < 45) {
+        if (ox >= 0 && oy >= 0 && ox + scan.max_cell.x() < 60 && oy + scan.max_cell.y() < 45) {
           ++checked_inside;
         }
       }
@@ -127,21 +142,13 @@ TEST(PrecomputationGrid2DTest, SumValuesIsTheSumOfGetValue) {
 }
 
 // SumValuesOverOffsets gives SumValues at each offset of its lattice: steps of whole blocks
-// (its per-point path) and of part blocks (per offset), 1 to 8 rows (a fixed count of sums
-// per pass up to 6, a general one beyond), on the stored area, across its edge and off it.
+// (a pass per column of up to 6 rows, or the 2 x 2 children in one) and of part blocks (per
+// offset), 1 to 8 rows, on the stored area (unchecked), across its edge (the points that
+// leave it checked) and off it.
 TEST(PrecomputationGrid2DTest, SumValuesOverOffsetsIsSumValuesAtEachOffset) {
   const ProbabilityGrid grid = MakeRandomGrid(70, 50, 5);
   const PrecomputationGridStack2D stack(grid, 6);
-  std::mt19937 rng(13);
-  std::uniform_int_distribution<int> coordinate(0, 24);
-  std::vector<Eigen::Array2i> cells;
-  for (int i = 0; i < 30; ++i) cells.emplace_back(coordinate(rng), coordinate(rng) / 2);
-  Eigen::Array2i min_cell = cells.front();
-  Eigen::Array2i max_cell = cells.front();
-  for (const Eigen::Array2i& cell : cells) {
-    min_cell = min_cell.min(cell);
-    max_cell = max_cell.max(cell);
-  }
+  const RandomScan scan = MakeRandomScan(30, 24, 13);
   int checked_inside = 0;
   for (int depth = 0; depth <= stack.max_depth(); ++depth) {
     const PrecomputationGrid2D& level = stack.Get(depth);
@@ -151,19 +158,20 @@ TEST(PrecomputationGrid2DTest, SumValuesOverOffsetsIsSumValuesAtEachOffset) {
           for (const Eigen::Array2i& first :
                {Eigen::Array2i(3, 2), Eigen::Array2i(-5, 1), Eigen::Array2i(40, 30)}) {
             std::vector<long> sums(static_cast<size_t>(num_x) * num_y, -1);
-            level.SumValuesOverOffsets(cells, min_cell, max_cell, first, step, num_x, num_y,
-                                       sums.data());
+            level.SumValuesOverOffsets(scan.cells, scan.min_cell, scan.max_cell, first, step, num_x,
+                                       num_y, sums.data());
             for (int i = 0; i < num_x; ++i) {
               for (int j = 0; j < num_y; ++j) {
                 const Eigen::Array2i offset = first + step * Eigen::Array2i(i, j);
-                ASSERT_EQ(sums[i * num_y + j], level.SumValues(cells, min_cell, max_cell, offset))
+                ASSERT_EQ(sums[i * num_y + j],
+                          level.SumValues(scan.cells, scan.min_cell, scan.max_cell, offset))
                     << "depth " << depth << " step " << step << " offset " << offset.x() << " "
                     << offset.y();
               }
             }
             const Eigen::Array2i last = first + step * Eigen::Array2i(num_x - 1, num_y - 1);
-            if ((first + min_cell).minCoeff() >= 0 && (last + max_cell).x() < 70 &&
-                (last + max_cell).y() < 50) {
+            if ((first + scan.min_cell).minCoeff() >= 0 && (last + scan.max_cell).x() < 70 &&
+                (last + scan.max_cell).y() < 50) {
               ++checked_inside;
             }
           }
