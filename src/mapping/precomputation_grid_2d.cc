@@ -261,7 +261,7 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
                        (low.y() >> block_shift_) >= min_block_.y() &&
                        (high.x() >> block_shift_) < min_block_.x() + size_x_ &&
                        (high.y() >> block_shift_) < min_block_.y() + size_y_;
-  if (!whole_blocks || (num_y > 6 && !on_grid)) {
+  if (!whole_blocks) {
     for (int i = 0; i < num_x; ++i) {
       for (int j = 0; j < num_y; ++j) {
         sums[i * num_y + j] =
@@ -334,7 +334,7 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
         case 6:
           pass(One(), std::integral_constant<int, 6>(), checked, i);
           break;
-        default:  // on the stored area (above)
+        default:  // more rows than branch and bound asks for: offset by offset
           for (int j = 0; j < num_y; ++j) {
             long sum = 0;
             for (const Eigen::Array2i& cell : cells) {

@@ -82,7 +82,7 @@ class PrecomputationGrid2D {
   // [0, num_y), into sums[i * num_y + j]: the same sums, a column of offsets (one i, up to 6
   // j; or 2 x 2 offsets) per pass over the points, their sums in registers, where offset by
   // offset every point is fetched and located again for each offset; where the lattice
-  // reaches off the stored area, only the points it takes off are checked one by one. Branch
+  // reaches off the stored area, only the points it moves off are checked one by one. Branch
   // and bound scores 36 offsets per rotated scan at the lowest resolution of local SLAM's wide
   // search, and 4 children per expansion (the same poses to the byte; orebro 0.8x the CPU
   // time, intel's loop-closure searches 0.66x).
