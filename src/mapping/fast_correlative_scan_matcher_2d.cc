@@ -138,9 +138,11 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
   Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(),
                                     with_prior ? 0.0 : min_score, with_prior, &children_by_depth);
   if (with_prior) {
-    std::vector<Candidate2D> leaf = {best};
-    ScoreCandidates(grids_.Get(0), scans, false, &leaf);
-    best.score = leaf.front().score;
+    const int i = best.scan_index;
+    const long sum =
+        grids_.Get(0).SumValues(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
+                                Eigen::Array2i(best.x_offset_cells, best.y_offset_cells));
+    SetScore(grids_.Get(0), sum, static_cast<int>(scans.scans[i].size()), false, &best);
   }
   if (!(best.score > min_score)) return false;
   *score = best.score;
@@ -153,20 +155,22 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
     const ScanSet& scans, const SearchParameters& params, bool with_prior) const {
   const PrecomputationGrid2D& grid = grids_.Get(grids_.max_depth());
   const int step = grid.width_cells();
+  // Offsets min, min + step, ... up to max along one axis.
+  const auto num_offsets = [step](int min, int max) { return (max - min) / step + 1; };
   std::vector<Candidate2D> candidates;
   size_t count = 0;
   for (const SearchParameters::LinearBounds& bounds : params.linear_bounds) {
     if (bounds.max_x < bounds.min_x || bounds.max_y < bounds.min_y) continue;
-    count += static_cast<size_t>((bounds.max_x - bounds.min_x) / step + 1) *
-             ((bounds.max_y - bounds.min_y) / step + 1);
+    count += static_cast<size_t>(num_offsets(bounds.min_x, bounds.max_x)) *
+             num_offsets(bounds.min_y, bounds.max_y);
   }
   candidates.reserve(count);  // thousands per local SLAM wide search
   std::vector<long> sums;
   for (int i = 0; i < params.num_scans; ++i) {
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[i];
     if (bounds.max_x < bounds.min_x || bounds.max_y < bounds.min_y) continue;
-    const int num_x = (bounds.max_x - bounds.min_x) / step + 1;
-    const int num_y = (bounds.max_y - bounds.min_y) / step + 1;
+    const int num_x = num_offsets(bounds.min_x, bounds.max_x);
+    const int num_y = num_offsets(bounds.min_y, bounds.max_y);
     sums.resize(static_cast<size_t>(num_x) * num_y);
     grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
                               Eigen::Array2i(bounds.min_x, bounds.min_y), step, num_x, num_y,
@@ -182,19 +186,6 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
   }
   std::sort(candidates.begin(), candidates.end(), std::greater<Candidate2D>());
   return candidates;
-}
-
-void FastCorrelativeScanMatcher2D::ScoreCandidates(const PrecomputationGrid2D& grid,
-                                                   const ScanSet& scans, bool with_prior,
-                                                   std::vector<Candidate2D>* candidates) const {
-  for (Candidate2D& candidate : *candidates) {
-    const int i = candidate.scan_index;
-    const long sum =
-        grid.SumValues(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
-                       Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells));
-    SetScore(grid, sum, static_cast<int>(scans.scans[i].size()), with_prior, &candidate);
-  }
-  std::sort(candidates->begin(), candidates->end(), std::greater<Candidate2D>());
 }
 
 void FastCorrelativeScanMatcher2D::SetScore(const PrecomputationGrid2D& grid, long value_sum,

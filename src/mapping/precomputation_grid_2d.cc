@@ -261,7 +261,9 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
                        (low.y() >> block_shift_) >= min_block_.y() &&
                        (high.x() >> block_shift_) < min_block_.x() + size_x_ &&
                        (high.y() >> block_shift_) < min_block_.y() + size_y_;
-  if (!whole_blocks) {
+  // Per offset: steps of part blocks, and more rows than the passes below are written for (6,
+  // local SLAM's wide search; a full-submap search's coarsest level can have more).
+  if (!whole_blocks || num_y > 6) {
     for (int i = 0; i < num_x; ++i) {
       for (int j = 0; j < num_y; ++j) {
         sums[i * num_y + j] =
@@ -334,14 +336,6 @@ void PrecomputationGrid2D::SumValuesOverOffsets(const std::vector<Eigen::Array2i
         case 6:
           pass(One(), std::integral_constant<int, 6>(), checked, i);
           break;
-        default:  // more rows than branch and bound asks for: offset by offset
-          for (int j = 0; j < num_y; ++j) {
-            long sum = 0;
-            for (const Eigen::Array2i& cell : cells) {
-              sum += GetValue(cell + first + step * Eigen::Array2i(i, j));
-            }
-            sums[i * num_y + j] = sum;
-          }
       }
     }
   };

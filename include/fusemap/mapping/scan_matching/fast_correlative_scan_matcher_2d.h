@@ -91,10 +91,9 @@ class FastCorrelativeScanMatcher2D {
   bool MatchWithSearchParameters(SearchParameters params, const common::Rigid2d& initial_pose,
                                  const sensor::PointCloud2d& cloud, double min_score,
                                  bool with_prior, double* score, common::Rigid2d* pose) const;
-  std::vector<Candidate2D> ComputeLowestResolutionCandidates(
-      const ScanSet& scans, const SearchParameters& params, bool with_prior) const;
-  void ScoreCandidates(const PrecomputationGrid2D& grid, const ScanSet& scans, bool with_prior,
-                       std::vector<Candidate2D>* candidates) const;
+  std::vector<Candidate2D> ComputeLowestResolutionCandidates(const ScanSet& scans,
+                                                             const SearchParameters& params,
+                                                             bool with_prior) const;
   // The candidate's score from the sum of its points' values in `grid` (times the prior's
   // factor with `with_prior`).
   void SetScore(const PrecomputationGrid2D& grid, long value_sum, int num_points, bool with_prior,
