@@ -17,6 +17,7 @@ double Draw(std::mt19937_64* rng, double stddev) {
 void OdometryOptions::Check(common::OptionChecker* check) const {
   check->Require(rate_hz > 0.0, "rate_hz", "must be > 0");
   check->Require(speed_scale_error_stddev >= 0.0, "speed_scale_error_stddev", "must be >= 0");
+  check->Require(speed_scale >= 0.0, "speed_scale", "must be >= 0 (0: drawn)");
   check->Require(speed_noise_stddev_mps >= 0.0, "speed_noise_stddev_mps", "must be >= 0");
   check->Require(yaw_rate_bias_stddev_radps >= 0.0, "yaw_rate_bias_stddev_radps", "must be >= 0");
   check->Require(yaw_rate_noise_stddev_radps >= 0.0, "yaw_rate_noise_stddev_radps",
@@ -45,7 +46,9 @@ bool ImuOptions::IsValid(std::string* error) const {
 
 OdometrySimulator::OdometrySimulator(const OdometryOptions& options, uint64_t seed)
     : options_(options), rng_(MakeRng(seed, NoiseStream::kOdometry, 0)) {
-  speed_scale_ = 1.0 + Draw(&rng_, options_.speed_scale_error_stddev);
+  // Drawn either way, so that a fixed scale leaves every later draw as it was.
+  const double drawn_scale = 1.0 + Draw(&rng_, options_.speed_scale_error_stddev);
+  speed_scale_ = options_.speed_scale > 0.0 ? options_.speed_scale : drawn_scale;
   yaw_rate_bias_radps_ = Draw(&rng_, options_.yaw_rate_bias_stddev_radps);
 }
 

@@ -91,7 +91,11 @@ sensor::RgbdFrame Simulation::Rgbd(int index) const {
 }
 
 OdometrySimulator Simulation::MakeOdometrySimulator() const {
-  return OdometrySimulator(options_.odometry, options_.seed);
+  OdometryOptions odometry = options_.odometry;
+  if (world_.robot.odometry_speed_scale > 0.0) {
+    odometry.speed_scale = world_.robot.odometry_speed_scale;
+  }
+  return OdometrySimulator(odometry, options_.seed);
 }
 
 ImuSimulator Simulation::MakeImuSimulator() const { return ImuSimulator(options_.imu, options_.seed); }

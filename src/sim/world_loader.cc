@@ -247,7 +247,7 @@ void ParseWorld(const YAML::Node& root, Parser* p, World* world) {
   const YAML::Node robot = root["robot"];
   if (!robot) return p->Fail(root, "missing 'robot'");
   p->CheckKeys(robot, {"waypoints", "max_speed_mps", "max_accel_mps2", "max_lateral_accel_mps2",
-                       "turn_radius_m", "laps"});
+                       "turn_radius_m", "laps", "odometry_speed_scale"});
   for (const YAML::Node& point : robot["waypoints"]) {
     const std::vector<double> v = p->Numbers(point, 2);
     world->robot.waypoints_m.emplace_back(v[0], v[1]);
@@ -263,6 +263,8 @@ void ParseWorld(const YAML::Node& root, Parser* p, World* world) {
   plan.max_lateral_accel_mps2 = p->Number(robot, "max_lateral_accel_mps2", plan.max_lateral_accel_mps2, 0.05, 20.0);
   plan.turn_radius_m = p->Number(robot, "turn_radius_m", plan.turn_radius_m, 0.05, 100.0);
   plan.laps = p->Number(robot, "laps", plan.laps, 0.01, 1000.0);
+  plan.odometry_speed_scale =
+      p->Number(robot, "odometry_speed_scale", plan.odometry_speed_scale, 0.5, 1.5);
 }
 
 }  // namespace

@@ -193,6 +193,43 @@ TEST(WorldLoaderTest, PosterBandAndLightingPhases) {
   EXPECT_NE(error.find("b.yaml:2: band_m"), std::string::npos) << error;
 }
 
+// A world may fix the wheel odometry's speed scale (a robot known to read 2 % long): the
+// distance it reports is then the driven one times that, up to the speed noise.
+TEST(SimulationTest, WorldFixesOdometrySpeedScale) {
+  World world;
+  std::string error;
+  const std::string route = "robot: {waypoints: [[0, 0], [20, 0], [20, 10], [0, 10]], laps: 1";
+  ASSERT_TRUE(
+      LoadWorldFromString(route + ", odometry_speed_scale: 1.02}\n", "s.yaml", &world, &error))
+      << error;
+  EXPECT_DOUBLE_EQ(world.robot.odometry_speed_scale, 1.02);
+  const auto distances = [](const World& w) {
+    std::string create_error;
+    auto simulation = Simulation::Create(w, SmallOptions(5), &create_error);
+    EXPECT_TRUE(simulation) << create_error;
+    OdometrySimulator odometry = simulation->MakeOdometrySimulator();
+    double v, w_radps, measured_m = 0.0, driven_m = 0.0;
+    for (int i = 0; i <= 500; ++i) {  // 10 s at 50 Hz.
+      const double t = i * 0.02;
+      odometry.Step(t, simulation->Truth(t), &v, &w_radps);
+      measured_m += v * 0.02;
+      driven_m += simulation->Truth(t).speed_mps * 0.02;
+    }
+    return std::make_pair(measured_m, driven_m);
+  };
+  const auto [fixed_m, fixed_driven_m] = distances(world);
+  ASSERT_GT(fixed_driven_m, 5.0);
+  EXPECT_NEAR(fixed_m / fixed_driven_m, 1.02, 0.002);
+  // Without the key the scale is drawn (seed 5: not 1.02).
+  World drawn = world;
+  drawn.robot.odometry_speed_scale = 0.0;
+  const auto [drawn_m, drawn_driven_m] = distances(drawn);
+  EXPECT_GT(std::abs(drawn_m / drawn_driven_m - 1.02), 0.002);
+  EXPECT_FALSE(
+      LoadWorldFromString(route + ", odometry_speed_scale: 3}\n", "s.yaml", &world, &error));
+  EXPECT_NE(error.find("odometry_speed_scale"), std::string::npos) << error;
+}
+
 TEST(SimulationTest, LightingPhaseStartsAtItsLap) {
   World world = LoadHall();
   world.robot.laps = 2.0;

@@ -16,7 +16,8 @@ namespace sim {
 // + bias + noise, integrated (midpoint rule) into a drifting pose that starts at the identity.
 struct OdometryOptions {
   double rate_hz = 50.0;
-  double speed_scale_error_stddev = 0.01;  // Drawn once per run.
+  double speed_scale_error_stddev = 0.01;  // Drawn once per run,
+  double speed_scale = 0.0;                // unless this is > 0: the scale, fixed.
   double speed_noise_stddev_mps = 0.02;
   double yaw_rate_bias_stddev_radps = 0.003;  // Drawn once per run.
   double yaw_rate_noise_stddev_radps = 0.01;

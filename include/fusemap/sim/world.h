@@ -84,6 +84,9 @@ struct RobotPlan {
   double max_lateral_accel_mps2 = 1.0;
   double turn_radius_m = 1.2;
   double laps = 1.5;
+  // The wheel odometry's speed scale, when the world fixes it (a robot known to read long or
+  // short); 0: drawn per run (OdometryOptions::speed_scale_error_stddev).
+  double odometry_speed_scale = 0.0;
 };
 
 struct World {
