@@ -3,7 +3,7 @@
 # 2D laser cannot close the loop right: for each world, same seed, simulate two laps, map the
 # log laser-only and with the checker on, and score both against the simulator's truth.
 # Usage: tools/bench_vloop_sim.sh [BUILD_DIR [OUT_DIR]]   (defaults build, out/bench_vloop_sim)
-# Environment: FUSEMAP_BENCH_SEED (1), FUSEMAP_BENCH_WORLDS ("corridor rooms ring"),
+# Environment: FUSEMAP_BENCH_SEED (1), FUSEMAP_BENCH_WORLDS ("corridor rooms ring ring_rooms"),
 #              FUSEMAP_BENCH_RGBD_RATE (2 Hz), FUSEMAP_BENCH_THREADS (2, rendering only: the
 #              mapping runs with --threads 1, which is reproducible bit for bit).
 set -euo pipefail
@@ -11,7 +11,7 @@ cd "$(dirname "$0")/.."
 build=${1:-build}
 out=${2:-out/bench_vloop_sim}
 seed=${FUSEMAP_BENCH_SEED:-1}
-worlds=${FUSEMAP_BENCH_WORLDS:-corridor rooms ring}
+worlds=${FUSEMAP_BENCH_WORLDS:-corridor rooms ring ring_rooms}
 rate=${FUSEMAP_BENCH_RGBD_RATE:-2}
 threads=${FUSEMAP_BENCH_THREADS:-2}
 sim=$build/tools/sim/fusemap_sim
