@@ -479,6 +479,13 @@ void PoseGraph2D::RunOptimization(int max_iterations) {
       if (constraint.tag == Constraint2D::kInterSubmap) {
         solved_loops.emplace_back(constraint.node, constraint.submap);
       }
+      if (constraint.tag == Constraint2D::kIntraSubmap) {
+        // A node's place in its submap along a direction its scan did not pin is the
+        // odometry's, as its step is: where the camera measured that step, neither holds the
+        // odometry's scale error against it (the node-to-node steps below).
+        const NodeData& node = nodes_[SlotLocked(constraint.node)];
+        if (node.motion_linked) constraint.unmeasured_direction = node.unmeasured_direction;
+      }
       constraint.submap = submap_slot[constraint.submap];
       constraint.node = node_slot[SlotLocked(constraint.node)];
       problem.AddConstraint(constraint);
