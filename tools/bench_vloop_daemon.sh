@@ -8,7 +8,7 @@
 # line), then per world the median p99 on over off. Runs alternate so that a change in the
 # machine's load falls on both; read the ratio, not the absolute figures.
 # Usage: tools/bench_vloop_daemon.sh [BUILD_DIR [OUT_DIR [ROUNDS [THREADS]]]]
-#        (defaults build, out/bench_vloop_daemon, 2, 2); FUSEMAP_BENCH_WORLDS ("corridor rooms ring").
+#        (defaults build, out/bench_vloop_daemon, 2, 2); FUSEMAP_BENCH_WORLDS ("corridor rooms ring ring_rooms").
 # Exit codes: 0 all runs done, 1 a run failed (its stderr is in OUT_DIR), 2 usage or missing build.
 set -euo pipefail
 if [[ ${1:-} == --help || ${1:-} == -h ]]; then
@@ -20,7 +20,7 @@ build=${1:-build}
 out=${2:-out/bench_vloop_daemon}
 rounds=${3:-2}
 threads=${4:-2}
-worlds=${FUSEMAP_BENCH_WORLDS:-corridor rooms ring}
+worlds=${FUSEMAP_BENCH_WORLDS:-corridor rooms ring ring_rooms}
 sim=$build/tools/sim/fusemap_sim
 daemon=$build/tools/fusemapd/fusemapd
 for tool in "$sim" "$daemon"; do
