@@ -172,20 +172,28 @@ std::vector<Candidate2D> FastCorrelativeScanMatcher2D::ComputeLowestResolutionCa
     const int num_x = num_offsets(bounds.min_x, bounds.max_x);
     const int num_y = num_offsets(bounds.min_y, bounds.max_y);
     sums.resize(static_cast<size_t>(num_x) * num_y);
-    grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
-                              Eigen::Array2i(bounds.min_x, bounds.min_y), step, num_x, num_y,
-                              sums.data());
-    const int num_points = static_cast<int>(scans.scans[i].size());
-    for (int xi = 0; xi < num_x; ++xi) {
-      for (int yi = 0; yi < num_y; ++yi) {
-        candidates.emplace_back(i, bounds.min_x + xi * step, bounds.min_y + yi * step, params);
-        SetScore(grid, sums[static_cast<size_t>(xi) * num_y + yi], num_points, with_prior,
-                 &candidates.back());
-      }
-    }
+    AppendScoredLattice(grid, scans, i, Eigen::Array2i(bounds.min_x, bounds.min_y), step, num_x,
+                        num_y, params, with_prior, sums.data(), &candidates);
   }
   std::sort(candidates.begin(), candidates.end(), std::greater<Candidate2D>());
   return candidates;
+}
+
+void FastCorrelativeScanMatcher2D::AppendScoredLattice(
+    const PrecomputationGrid2D& grid, const ScanSet& scans, int scan_index,
+    const Eigen::Array2i& first, int step, int num_x, int num_y, const SearchParameters& params,
+    bool with_prior, long* sums, std::vector<Candidate2D>* candidates) const {
+  const int i = scan_index;
+  grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i], first, step,
+                            num_x, num_y, sums);
+  const int num_points = static_cast<int>(scans.scans[i].size());
+  for (int xi = 0; xi < num_x; ++xi) {
+    for (int yi = 0; yi < num_y; ++yi) {
+      candidates->emplace_back(i, first.x() + xi * step, first.y() + yi * step, params);
+      SetScore(grid, sums[static_cast<size_t>(xi) * num_y + yi], num_points, with_prior,
+               &candidates->back());
+    }
+  }
 }
 
 void FastCorrelativeScanMatcher2D::SetScore(const PrecomputationGrid2D& grid, long value_sum,
@@ -230,22 +238,12 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     std::vector<Candidate2D>& children = (*children_by_depth)[depth - 1];
     children.clear();
     // The children at {x, x + half_width} x {y, y + half_width} that lie in the window.
-    const int i = candidate.scan_index;
     const int num_x = candidate.x_offset_cells + half_width <= bounds.max_x ? 2 : 1;
     const int num_y = candidate.y_offset_cells + half_width <= bounds.max_y ? 2 : 1;
-    const PrecomputationGrid2D& grid = grids_.Get(depth - 1);
     long sums[4];
-    grid.SumValuesOverOffsets(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
-                              Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells),
-                              half_width, num_x, num_y, sums);
-    const int num_points = static_cast<int>(scans.scans[i].size());
-    for (int xi = 0; xi < num_x; ++xi) {
-      for (int yi = 0; yi < num_y; ++yi) {
-        children.emplace_back(i, candidate.x_offset_cells + xi * half_width,
-                              candidate.y_offset_cells + yi * half_width, params);
-        SetScore(grid, sums[xi * num_y + yi], num_points, with_prior, &children.back());
-      }
-    }
+    AppendScoredLattice(grids_.Get(depth - 1), scans, candidate.scan_index,
+                        Eigen::Array2i(candidate.x_offset_cells, candidate.y_offset_cells),
+                        half_width, num_x, num_y, params, with_prior, sums, &children);
     std::sort(children.begin(), children.end(), std::greater<Candidate2D>());
     const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score,
                                                   with_prior, children_by_depth);

@@ -94,6 +94,13 @@ class FastCorrelativeScanMatcher2D {
   std::vector<Candidate2D> ComputeLowestResolutionCandidates(const ScanSet& scans,
                                                              const SearchParameters& params,
                                                              bool with_prior) const;
+  // Appends scan_index's candidates at the offsets first + (xi * step, yi * step), xi in
+  // [0, num_x), yi in [0, num_y), scored on `grid` (their sums into `sums`, num_x * num_y
+  // long): the lowest-resolution lattice of a search and each expansion's children.
+  void AppendScoredLattice(const PrecomputationGrid2D& grid, const ScanSet& scans, int scan_index,
+                           const Eigen::Array2i& first, int step, int num_x, int num_y,
+                           const SearchParameters& params, bool with_prior, long* sums,
+                           std::vector<Candidate2D>* candidates) const;
   // The candidate's score from the sum of its points' values in `grid` (times the prior's
   // factor with `with_prior`).
   void SetScore(const PrecomputationGrid2D& grid, long value_sum, int num_points, bool with_prior,
