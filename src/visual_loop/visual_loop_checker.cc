@@ -4,9 +4,19 @@
 #include <cassert>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
+#include <utility>
 
 namespace fusemap {
 namespace visual_loop {
+namespace {
+
+// Verified keyframe pairs remembered: a laser loop's checks ask at most a few views of its
+// submap for one query keyframe, and loops arrive in the order the robot passes their places,
+// so a few hundred pairs cover every query still being asked about (a few hundred bytes each).
+constexpr size_t kMaxPlaceVerifications = 512;
+
+}  // namespace
 
 bool VisualLoopCheckerOptions::IsValid(std::string* error) const {
   if (!selector.IsValid(error) || !orb.IsValid(error) || !detector.IsValid(error) ||
@@ -97,8 +107,32 @@ std::optional<VisualLoopConstraint> VisualLoopChecker::ToConstraint(const Keyfra
   return constraint;
 }
 
+const VisualLoopChecker::PlaceVerification& VisualLoopChecker::VerifyPlace(const Keyframe& query,
+                                                                           const Keyframe& match) {
+  const std::pair<int, int> key(query.id, match.id);
+  const auto known = place_verifications_.find(key);
+  if (known != place_verifications_.end()) return known->second;
+  PlaceVerification place;
+  VerificationResult result = VerifyKeyframes(match, query, options_.detector.verification);
+  const auto image_match = latest_images_.find(match.id);
+  const auto image_query = latest_images_.find(query.id);
+  if (image_match != latest_images_.end() && image_query != latest_images_.end()) {
+    place.aligned_points = RefineByPatchAlignment(
+        match, image_match->second, query, image_query->second, options_.patch_alignment, &result);
+    place.refined_on_pixels =
+        result.verified && place.aligned_points >= options_.patch_alignment.min_points;
+  }
+  place.constraint = ToConstraint(match, query, result, &place.rejection);
+  place.inliers = result.inliers;
+  // Laser loops ask about the places the robot passes now: the oldest queries go first.
+  while (place_verifications_.size() >= kMaxPlaceVerifications) {
+    place_verifications_.erase(place_verifications_.begin());
+  }
+  return place_verifications_.emplace(key, std::move(place)).first->second;
+}
+
 VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_keyframe,
-                                                const common::Rigid2d& expected) const {
+                                                const common::Rigid2d& expected) {
   VisualCheckResult out;
   const Keyframe* query = detector_.Find(query_keyframe);
   const Keyframe* match = detector_.Find(match_keyframe);
@@ -106,31 +140,23 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
     out.reason = "no such keyframe";
     return out;
   }
-  VerificationResult result = VerifyKeyframes(*match, *query, options_.detector.verification);
-  const auto image_match = latest_images_.find(match_keyframe);
-  const auto image_query = latest_images_.find(query_keyframe);
-  if (image_match != latest_images_.end() && image_query != latest_images_.end()) {
-    out.aligned_points =
-        RefineByPatchAlignment(*match, image_match->second, *query, image_query->second,
-                               options_.patch_alignment, &result);
-    out.refined_on_pixels =
-        result.verified && out.aligned_points >= options_.patch_alignment.min_points;
-  }
-  std::string rejection;
-  out.constraint = ToConstraint(*match, *query, result, &rejection);
+  const PlaceVerification& place = VerifyPlace(*query, *match);
+  out.aligned_points = place.aligned_points;
+  out.refined_on_pixels = place.refined_on_pixels;
+  out.constraint = place.constraint;
   if (out.constraint) {
     out.check = VisualCheck::kVerified;
     return out;
   }
-  out.reason = rejection;
+  out.reason = place.rejection;
   // Not verified: a contradiction only if the camera had every chance to confirm the place.
   const bool rich = match->num_points_with_depth() >= options_.min_points_to_contradict &&
                     static_cast<int>(query->keypoints.size()) >= options_.min_points_to_contradict;
   const bool should_overlap = expected.translation().norm() <= options_.max_overlap_distance_m &&
                               std::abs(expected.angle_rad()) <= options_.max_overlap_yaw_rad;
-  if (rich && should_overlap && result.inliers <= options_.max_contradiction_inliers) {
+  if (rich && should_overlap && place.inliers <= options_.max_contradiction_inliers) {
     out.check = VisualCheck::kContradicted;
-    out.reason = "rich views that should overlap share only " + std::to_string(result.inliers) +
+    out.reason = "rich views that should overlap share only " + std::to_string(place.inliers) +
                  " consistent matches";
   }
   return out;
@@ -177,6 +203,11 @@ void VisualLoopChecker::RemoveSubmap(int submap) {
     detector_.Remove(id);
     T_base_camera_.erase(id);
     latest_images_.erase(id);
+  }
+  for (auto it = place_verifications_.begin(); it != place_verifications_.end();) {
+    const bool gone =
+        detector_.Find(it->first.first) == nullptr || detector_.Find(it->first.second) == nullptr;
+    it = gone ? place_verifications_.erase(it) : std::next(it);
   }
 }
 

@@ -86,35 +86,55 @@ TEST_F(VisualLoopCheckerTest, ContradictsOnlyWhereRichViewsShouldOverlap) {
 }
 
 // Pixels are held for the two latest keyframes only: a match between them (a motion link) is
-// refined on them, one with an older keyframe is not.
+// refined on them, one with an older keyframe is not. A pair is verified once: asked again
+// later (a laser loop's check), it keeps what its first verification measured.
 TEST(VisualLoopCheckerPixelsTest, RefinesOnlyBetweenTheTwoLatestKeyframes) {
   for (const bool enabled : {true, false}) {
     VisualLoopCheckerOptions options;
     options.refine_latest_on_pixels = enabled;
-    const std::unique_ptr<VisualLoopChecker> checker = MakeChecker(options);
-    ASSERT_TRUE(checker);
     const sensor::PinholeIntrinsics in = testing::TestIntrinsics();
     const common::Rigid2d truth(0.3, 0.0, 0.0);  // straight towards the wall
     const cv::Mat place = testing::RandomTexture(in.width, in.height, 31);
     const cv::Mat closer = testing::WarpToView(
         place, CameraMount().inverse() * common::Rigid3d::FromRigid2d(truth) * CameraMount(), in,
         kPlaneDepthM);
-    EXPECT_TRUE(
-        checker->AddFrame(Frame(place, true, 0.0), common::Rigid2d::Identity(), 0, 0).keyframe);
-    EXPECT_TRUE(checker->AddFrame(Frame(closer, true, 1.0), truth, 1, 0).keyframe);
+    const cv::Mat other = testing::RandomTexture(in.width, in.height, 32);
+    const auto add_place = [&](VisualLoopChecker* checker) {
+      EXPECT_TRUE(
+          checker->AddFrame(Frame(place, true, 0.0), common::Rigid2d::Identity(), 0, 0).keyframe);
+      EXPECT_TRUE(checker->AddFrame(Frame(closer, true, 1.0), truth, 1, 0).keyframe);
+    };
+    // Two more keyframes: 0 and 1 are no longer the latest, their pixels are gone.
+    const auto move_on = [&](VisualLoopChecker* checker) {
+      EXPECT_TRUE(checker->AddFrame(Frame(other, true, 2.0), common::Rigid2d(1.0, 0.0, 0.0), 2, 0)
+                      .keyframe);
+      EXPECT_TRUE(checker->AddFrame(Frame(other, true, 3.0), common::Rigid2d(2.0, 0.0, 0.0), 3, 0)
+                      .keyframe);
+    };
+
+    const std::unique_ptr<VisualLoopChecker> checker = MakeChecker(options);
+    ASSERT_TRUE(checker);
+    add_place(checker.get());
     const VisualCheckResult latest = checker->CheckPlace(1, 0, truth);
     ASSERT_EQ(latest.check, VisualCheck::kVerified) << latest.reason;
     EXPECT_EQ(latest.refined_on_pixels, enabled);
     EXPECT_EQ(latest.aligned_points >= options.patch_alignment.min_points, enabled)
         << latest.aligned_points;
     EXPECT_NEAR(latest.constraint->T_match_base_query_base.x(), 0.3, 0.002);
-    // Two more keyframes: 0 and 1 are no longer the latest, their pixels are gone.
-    const cv::Mat other = testing::RandomTexture(in.width, in.height, 32);
-    EXPECT_TRUE(
-        checker->AddFrame(Frame(other, true, 2.0), common::Rigid2d(1.0, 0.0, 0.0), 2, 0).keyframe);
-    EXPECT_TRUE(
-        checker->AddFrame(Frame(other, true, 3.0), common::Rigid2d(2.0, 0.0, 0.0), 3, 0).keyframe);
-    const VisualCheckResult older = checker->CheckPlace(1, 0, truth);
+    move_on(checker.get());
+    const VisualCheckResult again = checker->CheckPlace(1, 0, truth);
+    ASSERT_EQ(again.check, VisualCheck::kVerified) << again.reason;
+    EXPECT_EQ(again.refined_on_pixels, latest.refined_on_pixels);
+    EXPECT_EQ(again.aligned_points, latest.aligned_points);
+    EXPECT_EQ(again.constraint->T_match_base_query_base.x(),
+              latest.constraint->T_match_base_query_base.x());
+
+    // The same pair first asked about once its pixels are gone.
+    const std::unique_ptr<VisualLoopChecker> later = MakeChecker(options);
+    ASSERT_TRUE(later);
+    add_place(later.get());
+    move_on(later.get());
+    const VisualCheckResult older = later->CheckPlace(1, 0, truth);
     ASSERT_EQ(older.check, VisualCheck::kVerified) << older.reason;
     EXPECT_FALSE(older.refined_on_pixels);
     EXPECT_EQ(older.aligned_points, 0);
