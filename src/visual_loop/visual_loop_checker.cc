@@ -113,16 +113,18 @@ const VisualLoopChecker::PlaceVerification& VisualLoopChecker::VerifyPlace(const
   const auto known = place_verifications_.find(key);
   if (known != place_verifications_.end()) return known->second;
   PlaceVerification place;
+  VisualCheckResult& out = place.result;
   VerificationResult result = VerifyKeyframes(match, query, options_.detector.verification);
   const auto image_match = latest_images_.find(match.id);
   const auto image_query = latest_images_.find(query.id);
   if (image_match != latest_images_.end() && image_query != latest_images_.end()) {
-    place.aligned_points = RefineByPatchAlignment(
+    out.aligned_points = RefineByPatchAlignment(
         match, image_match->second, query, image_query->second, options_.patch_alignment, &result);
-    place.refined_on_pixels =
-        result.verified && place.aligned_points >= options_.patch_alignment.min_points;
+    out.refined_on_pixels =
+        result.verified && out.aligned_points >= options_.patch_alignment.min_points;
   }
-  place.constraint = ToConstraint(match, query, result, &place.rejection);
+  out.constraint = ToConstraint(match, query, result, &out.reason);
+  if (out.constraint) out.check = VisualCheck::kVerified;
   place.inliers = result.inliers;
   // Laser loops ask about the places the robot passes now: the oldest queries go first.
   while (place_verifications_.size() >= kMaxPlaceVerifications) {
@@ -141,14 +143,8 @@ VisualCheckResult VisualLoopChecker::CheckPlace(int query_keyframe, int match_ke
     return out;
   }
   const PlaceVerification& place = VerifyPlace(*query, *match);
-  out.aligned_points = place.aligned_points;
-  out.refined_on_pixels = place.refined_on_pixels;
-  out.constraint = place.constraint;
-  if (out.constraint) {
-    out.check = VisualCheck::kVerified;
-    return out;
-  }
-  out.reason = place.rejection;
+  out = place.result;
+  if (out.check == VisualCheck::kVerified) return out;
   // Not verified: a contradiction only if the camera had every chance to confirm the place.
   const bool rich = match->num_points_with_depth() >= options_.min_points_to_contradict &&
                     static_cast<int>(query->keypoints.size()) >= options_.min_points_to_contradict;

@@ -147,11 +147,8 @@ class VisualLoopChecker {
   // the laser loops of consecutive nodes ask for the same pair (simulated ring with rooms: 1,558
   // checks of 805 pairs), and verification is most of the checker's cost.
   struct PlaceVerification {
-    std::optional<VisualLoopConstraint> constraint;
-    std::string rejection;
-    int inliers = 0;
-    int aligned_points = 0;
-    bool refined_on_pixels = false;
+    VisualCheckResult result;  // kVerified, or kNotChecked and why it failed
+    int inliers = 0;           // what a contradiction is judged on
   };
   const PlaceVerification& VerifyPlace(const Keyframe& query, const Keyframe& match);
 
