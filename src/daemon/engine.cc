@@ -78,8 +78,10 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
          [this, done] {
            // The end of the poses; the frames end when the RGB-D thread has drained its queue.
            visual_poses_.Close();
+           scan_gap_.Close();  // no more scans: the rest of the checker's work runs at once
            done->wait();
          }});
+    session_->visual_stage()->SetPacer([this] { scan_gap_.WaitForGap(); });
   }
   ConnectSession();
   intake_.set_decode_rgbd(DecodesRgbd());
@@ -161,6 +163,7 @@ void Engine::Process(SensorMessage& message) {
   if (message.after_time_reset) session_->OnTimeReset();
   if (auto* scan = std::get_if<sensor::LaserScan>(&message.data)) {
     const auto pose = session_->AddScan(*scan);
+    scan_gap_.ScanDone(std::chrono::steady_clock::now());
     ++scans_processed_;
     last_stamp_s_ = scan->stamp_s;
     if (pose) {
@@ -220,6 +223,7 @@ void Engine::RunRgbd() {
     if (!rgbd_consumer_) LowerThisThreadPriority(kVisualThreadNice);
     while (auto frame = intake_.rgbd_queue().Pop()) {
       const bool wanted = rgbd_consumer_ || VisualWantsFrame(frame->frame.stamp_s);
+      if (wanted && !rgbd_consumer_) scan_gap_.WaitForGap();
       if (wanted && intake_.DecodeImages(&*frame)) {
         OfferVisualFrame(frame->frame);
         if (rgbd_consumer_) rgbd_consumer_(std::move(*frame));

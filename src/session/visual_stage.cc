@@ -156,6 +156,7 @@ void VisualStage::Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T
   }
   ++stats_.frames_offered;
   newest_offered_node_ = std::max(newest_offered_node_, binding->node);
+  Pace();
   const visual_loop::VisualLoopChecker::FrameResult result =
       checker_.AddFrame(camera_frame, T_local_base, binding->node, binding->submap);
   if (!result.keyframe) return;
@@ -178,6 +179,7 @@ void VisualStage::LinkMotion(int id, const common::Rigid2d& T_local_base) {
     return;
   }
   const common::Rigid2d expected = T_local_last_keyframe_base_.inverse() * T_local_base;
+  Pace();
   const visual_loop::VisualCheckResult result =
       checker_.CheckPlace(id, last_keyframe_id_, expected);
   if (result.check != visual_loop::VisualCheck::kVerified) {
@@ -376,6 +378,7 @@ void VisualStage::CheckLaserLoop(const pose_graph::LoopClosure2D& loop) {
     if (static_cast<int>(views.size()) > config_.max_check_views) views.resize(config_.max_check_views);
     int contradicted = 0;
     for (const View& view : views) {
+      Pace();
       const visual_loop::VisualCheckResult result = checker_.CheckPlace(query, view.id, view.expected);
       check_reason = result.reason;
       if (result.check == visual_loop::VisualCheck::kVerified) {

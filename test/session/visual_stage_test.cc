@@ -304,6 +304,24 @@ TEST(VisualStageTest, MotionLinksMeasureTheTrueMotionBetweenKeyframes) {
   EXPECT_TRUE(without.graph().NodeLinks().empty());
 }
 
+// fusemapd holds each piece of the checker's work until the gap after a scan: the pacer is
+// asked before every keyframe's processing and every motion link's verification, and holding
+// the work there changes nothing of its result.
+TEST(VisualStageTest, ThePacerIsAskedBeforeEachPieceOfWork) {
+  VisualRun paced;
+  int paces = 0;
+  paced.stage().SetPacer([&paces] { ++paces; });
+  paced.Drive(40);
+  const VisualStageStats stats = paced.stage().stats();
+  ASSERT_GT(stats.motion_links, 0);
+  EXPECT_EQ(paces, stats.frames_offered + stats.motion_links + stats.motion_links_refused);
+
+  VisualRun unpaced;
+  unpaced.Drive(40);
+  EXPECT_EQ(unpaced.stage().stats().checker.keyframes, stats.checker.keyframes);
+  EXPECT_EQ(unpaced.graph().NodeLinks().size(), paced.graph().NodeLinks().size());
+}
+
 // A restart between the laps: the keyframes of the first lap, through the checkpoint file's
 // encoding, still close the loop.
 TEST(VisualStageTest, RestoredKeyframesStillCloseTheLoop) {

@@ -19,6 +19,7 @@
 #include "fusemap/daemon/intake.h"
 #include "fusemap/daemon/publisher.h"
 #include "fusemap/daemon/rate_limited_log.h"
+#include "fusemap/daemon/scan_gap_gate.h"
 #include "fusemap/io/slam_config.h"
 #include "fusemap/io/trajectory_archive.h"
 #include "fusemap/pose_graph/map_builder_2d.h"
@@ -145,6 +146,8 @@ class Engine {
   std::atomic<int64_t> visual_frames_dropped_{0};
   std::atomic<int64_t> visual_poses_dropped_{0};
   double last_visual_frame_s_ = -1e300;  // RGB-D thread only
+  // The checker's work (and, checker only, its image decoding) starts in the gap after a scan.
+  ScanGapGate scan_gap_;
   // Set by the visual thread once its stage has finished (SlamSession::Finish waits for it).
   std::promise<void> visual_done_;
   std::string visual_keyframes_path_;  // empty: keyframes are not saved

@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -104,6 +105,11 @@ class VisualStage {
   VisualStageStats stats() const;
   const visual_loop::VisualLoopChecker& checker() const { return checker_; }
 
+  // Called before each piece of the checker's work (a frame's keyframe processing, one place
+  // verification), so that an owner on another thread can hold it until the CPU is free of
+  // more urgent work (fusemapd: right after a scan's pose). Empty: run at once.
+  void SetPacer(std::function<void()> pace) { pace_ = std::move(pace); }
+
  private:
   // Where a keyframe's robot base stood relative to its node (both local SLAM poses).
   struct KeyframeInfo {
@@ -118,6 +124,9 @@ class VisualStage {
     common::Rigid2d T_local_node;
   };
 
+  void Pace() const {
+    if (pace_) pace_();
+  }
   void ProcessPending();
   void Offer(const sensor::RgbdFrame& frame, const common::Rigid2d& T_local_base);
   void HandleVisualLoop(const visual_loop::VisualLoopConstraint& loop);
@@ -158,6 +167,7 @@ class VisualStage {
   int newest_offered_node_ = -1;
   bool finished_ = false;
   VisualStageStats stats_;
+  std::function<void()> pace_;
 };
 
 }  // namespace session
