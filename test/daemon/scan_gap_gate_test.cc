@@ -65,14 +65,21 @@ TEST(ScanGapGateTest, ClosedGateNeverHoldsWork) {
   gate.WaitForGap();  // returns
 }
 
-TEST(ScanGapGateTest, AScanReleasesAWaitingWorker) {
-  // Scans 10 s apart, the last 10 s ago: a worker must wait (up to 20 s more) for the next.
+// Scans 10 s apart, the last 10 s ago: a worker must wait (up to 20 s more) for the next.
+ScanGapGate::Options TenSecondScans() {
   ScanGapGate::Options options;
   options.max_interval_s = 100.0;
-  ScanGapGate gate(options);
+  return options;
+}
+void MarkTwoScansTenSecondsApart(ScanGapGate* gate) {
   const Clock::time_point t0 = Clock::now();
-  gate.ScanDone(t0 - std::chrono::seconds(20));
-  gate.ScanDone(t0 - std::chrono::seconds(10));
+  gate->ScanDone(t0 - std::chrono::seconds(20));
+  gate->ScanDone(t0 - std::chrono::seconds(10));
+}
+
+TEST(ScanGapGateTest, AScanReleasesAWaitingWorker) {
+  ScanGapGate gate(TenSecondScans());
+  MarkTwoScansTenSecondsApart(&gate);
   ASSERT_NE(gate.WaitUntil(Clock::now()), kRun);
   std::thread worker([&gate] { gate.WaitForGap(); });
   gate.ScanDone(Clock::now());  // the worker may start now: it returns long before the stall
@@ -81,12 +88,9 @@ TEST(ScanGapGateTest, AScanReleasesAWaitingWorker) {
 }
 
 TEST(ScanGapGateTest, ClosingReleasesAWaitingWorker) {
-  ScanGapGate::Options options;
-  options.max_interval_s = 100.0;
-  ScanGapGate gate(options);
-  const Clock::time_point t0 = Clock::now();
-  gate.ScanDone(t0 - std::chrono::seconds(20));
-  gate.ScanDone(t0 - std::chrono::seconds(10));
+  ScanGapGate gate(TenSecondScans());
+  MarkTwoScansTenSecondsApart(&gate);
+  ASSERT_NE(gate.WaitUntil(Clock::now()), kRun);
   std::thread worker([&gate] { gate.WaitForGap(); });
   gate.Close();
   worker.join();
