@@ -12,15 +12,16 @@ namespace daemon {
 // cores, a checker running beside the SLAM thread crowds the publisher and LCM threads onto
 // the SLAM thread's core (issue 17: the scan->pose p99 with the checker on). The SLAM thread
 // marks each scan done; WaitForGap returns while the time since that mark is under `fraction`
-// of the usual scan interval (so a piece of work started then ends before the next scan), or
-// at once when scans have stopped coming (no laser, end of a log) or the gate is closed.
+// of the usual scan interval (so that a piece of work started then mostly ends before the next
+// scan), or at once when scans have stopped coming (no laser, end of a log), before the
+// interval is known (two scans) or once the gate is closed.
 // Thread-safe.
 class ScanGapGate {
  public:
   using Clock = std::chrono::steady_clock;
 
   struct Options {
-    double fraction = 0.4;  // of the scan interval, from its end, in which work may start
+    double fraction = 0.4;  // of the scan interval, from a scan's end, in which work may start
     // Scans further apart than this are a stall, not the interval; with no scan for
     // `stall_intervals` intervals (or this), work runs freely.
     double max_interval_s = 0.5;
@@ -30,7 +31,7 @@ class ScanGapGate {
   ScanGapGate() : ScanGapGate(Options{}) {}
   explicit ScanGapGate(const Options& options) : options_(options) {}
 
-  // SLAM thread, after a scan's pose is handed over.
+  // SLAM thread, as soon as it has processed a scan.
   void ScanDone(Clock::time_point now);
   // Blocks until work may start (see above).
   void WaitForGap();
