@@ -163,7 +163,8 @@ void Engine::Process(SensorMessage& message) {
   if (message.after_time_reset) session_->OnTimeReset();
   if (auto* scan = std::get_if<sensor::LaserScan>(&message.data)) {
     const auto pose = session_->AddScan(*scan);
-    scan_gap_.ScanDone(std::chrono::steady_clock::now());
+    // Only the checker waits on the gate: without it, no lock on this thread's path.
+    if (session_->visual_stage() != nullptr) scan_gap_.ScanDone(std::chrono::steady_clock::now());
     ++scans_processed_;
     last_stamp_s_ = scan->stamp_s;
     if (pose) {

@@ -22,9 +22,9 @@ class ScanGapGate {
 
   struct Options {
     double fraction = 0.4;  // of the scan interval, from a scan's end, in which work may start
-    // Scans further apart than this are a stall, not the interval; with no scan for
-    // `stall_intervals` intervals (or this), work runs freely.
+    // Scans further apart than this are a stall, not the interval.
     double max_interval_s = 0.5;
+    // With no scan for this many intervals, work runs freely.
     double stall_intervals = 3.0;
   };
 
