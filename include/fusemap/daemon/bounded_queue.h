@@ -42,35 +42,50 @@ class BoundedQueue {
 
   // False if the queue was closed (the item is discarded, not counted as dropped).
   bool Push(T item) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    if (policy_ == OverflowPolicy::kBlock) {
-      not_full_.wait(lock, [this] { return closed_ || items_.size() < capacity_; });
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      if (policy_ == OverflowPolicy::kBlock) {
+        not_full_.wait(lock, [this] { return closed_ || items_.size() < capacity_; });
+      }
+      if (closed_) return false;
+      if (items_.size() >= capacity_) {
+        if (on_drop_) on_drop_(items_.front());
+        items_.pop_front();
+        ++dropped_;
+      }
+      items_.push_back(std::move(item));
+      ++pushed_;
     }
-    if (closed_) return false;
-    if (items_.size() >= capacity_) {
-      if (on_drop_) on_drop_(items_.front());
-      items_.pop_front();
-      ++dropped_;
-    }
-    items_.push_back(std::move(item));
-    ++pushed_;
+    // Woken with the lock still held, a consumer that preempts this thread finds the mutex
+    // taken and sleeps again, and the item waits until the scheduler runs this thread once
+    // more (fusemapd: a pose held up to ~2 ms behind its own wake-up, issue 17).
     not_empty_.notify_one();
     return true;
   }
 
   // Blocks until an item is available or the queue is closed and drained (then empty).
   std::optional<T> Pop() {
-    std::unique_lock<std::mutex> lock(mutex_);
-    not_empty_.wait(lock, [this] { return closed_ || !items_.empty(); });
-    return PopLocked();
+    std::optional<T> item;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      not_empty_.wait(lock, [this] { return closed_ || !items_.empty(); });
+      item = PopLocked();
+    }
+    if (item) not_full_.notify_one();  // outside the lock, as in Push
+    return item;
   }
 
   // Like Pop but gives up at `deadline` (returns empty; check closed_and_drained()).
   template <typename Clock, typename Duration>
   std::optional<T> PopUntil(const std::chrono::time_point<Clock, Duration>& deadline) {
-    std::unique_lock<std::mutex> lock(mutex_);
-    not_empty_.wait_until(lock, deadline, [this] { return closed_ || !items_.empty(); });
-    return PopLocked();
+    std::optional<T> item;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      not_empty_.wait_until(lock, deadline, [this] { return closed_ || !items_.empty(); });
+      item = PopLocked();
+    }
+    if (item) not_full_.notify_one();
+    return item;
   }
 
   // Wakes every waiter; see the class comment for what happens to queued items.
@@ -105,7 +120,6 @@ class BoundedQueue {
     if (items_.empty()) return std::nullopt;
     std::optional<T> item(std::move(items_.front()));
     items_.pop_front();
-    not_full_.notify_one();
     return item;
   }
 
