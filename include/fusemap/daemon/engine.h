@@ -71,6 +71,10 @@ class Engine {
   // (io::WriteVisualKeyframesFile, atomically) every daemon.checkpoint_period_s when they
   // changed, and at shutdown. Failures count as checkpoint failures.
   void SetVisualKeyframesFile(const std::string& path) { visual_keyframes_path_ = path; }
+  // Before Start(): what hands freed heap pages back to the system every
+  // daemon.release_memory_period_s (default common::ReleaseFreeMemory). It runs on the
+  // executor, right after a pose is published: never on the publisher's path.
+  void SetMemoryRelease(std::function<void()> release) { release_memory_ = std::move(release); }
   // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
   // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
   // as their node indices will be given to new nodes; returns how many were kept.
@@ -151,6 +155,7 @@ class Engine {
   // Set by the visual thread once its stage has finished (SlamSession::Finish waits for it).
   std::promise<void> visual_done_;
   std::string visual_keyframes_path_;  // empty: keyframes are not saved
+  std::function<void()> release_memory_;
   std::unique_ptr<common::Executor> executor_;
   std::unique_ptr<session::SlamSession> session_;
 
