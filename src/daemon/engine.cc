@@ -402,8 +402,9 @@ void Engine::RunPublisher() {
   auto next_health = Clock::now() + health_period;
   auto next_release = release_memory ? Clock::now() + release_period : Clock::time_point::max();
   // malloc_trim takes 3-18 ms with the checker's images in the heap (corridor world): on this
-  // thread it held back the poses behind it (3 of the 5 slowest scans). A worker runs it, right
-  // after a pose, at the start of the gap before the next scan; without scans, a period late.
+  // thread it held back the poses behind it (3 of the 5 slowest scans). A worker runs it (with
+  // one thread, this one, inline), right after a pose, at the start of the gap before the next
+  // scan; without scans, a period late.
   const auto release = [&] {
     executor_->ScheduleFirst(release_memory_);
     next_release = Clock::now() + release_period;

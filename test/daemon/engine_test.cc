@@ -53,13 +53,14 @@ class PoseCounter : public Publisher {
 TEST(EngineTest, ReleasingMemoryHoldsBackNoPose) {
   DaemonOptions options;
   options.release_memory_period_s = 1e-3;  // due after the first pose
-  PoseCounter publisher;
-  Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
-                nullptr);
+  // Declared before the engine, which may still run a release while it is destroyed.
   std::promise<void> release_started;
   std::promise<void> release_may_end;
   std::shared_future<void> may_end = release_may_end.get_future().share();
   std::atomic<bool> first{true};  // only the first release waits (the test's)
+  PoseCounter publisher;
+  Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
+                nullptr);
   engine.SetMemoryRelease([&, may_end] {
     if (!first.exchange(false)) return;
     release_started.set_value();

@@ -72,8 +72,9 @@ class Engine {
   // changed, and at shutdown. Failures count as checkpoint failures.
   void SetVisualKeyframesFile(const std::string& path) { visual_keyframes_path_ = path; }
   // Before Start(): what hands freed heap pages back to the system every
-  // daemon.release_memory_period_s (default common::ReleaseFreeMemory). It runs on the
-  // executor, right after a pose is published: never on the publisher's path.
+  // daemon.release_memory_period_s (default common::ReleaseFreeMemory). The publisher thread
+  // hands it to the executor right after a pose: a worker runs it (with one thread, the
+  // publisher itself, inline, before the next pose is due).
   void SetMemoryRelease(std::function<void()> release) { release_memory_ = std::move(release); }
   // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
   // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
