@@ -417,9 +417,10 @@ void Engine::RunPublisher() {
     if (event) {
       if (event->kind == OutputEvent::Kind::kPose) {
         publisher_->PublishPose(event->stamp_s, event->pose);
-        latency_.Add(std::chrono::duration<double, std::milli>(Clock::now() - event->received)
-                         .count());
-        if (Clock::now() >= next_release) release();
+        const auto published = Clock::now();
+        latency_.Add(
+            std::chrono::duration<double, std::milli>(published - event->received).count());
+        if (published >= next_release) release();
       } else {
         PublishSubmapsAndLoops(last_stamp_s_);
         next_submaps = Clock::now() + submap_period;
