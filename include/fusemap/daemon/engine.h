@@ -74,7 +74,7 @@ class Engine {
   // Before Start(): what hands freed heap pages back to the system every
   // daemon.release_memory_period_s (default common::ReleaseFreeMemory). The publisher thread
   // hands it to the executor right after a pose: a worker runs it (with one thread, the
-  // publisher itself, inline, before the next pose is due).
+  // publisher itself, inline, so the next pose waits until it ends).
   void SetMemoryRelease(std::function<void()> release) { release_memory_ = std::move(release); }
   // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
   // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
