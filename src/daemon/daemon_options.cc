@@ -20,6 +20,8 @@ void DaemonOptions::Check(common::OptionChecker* check) const {
   check->Require(bad_message_log_interval_s >= 0.0, "bad_message_log_interval_s", "must be >= 0");
   check->Require(checkpoint_period_s >= 0.0, "checkpoint_period_s", "must be >= 0");
   check->Require(release_memory_period_s >= 0.0, "release_memory_period_s", "must be >= 0");
+  check->Require(realtime_priority >= 0 && realtime_priority <= 99, "realtime_priority",
+                 "must be in [0, 99]");
   // The stamp filter's rules, under the names its fields have in daemon:.
   common::OptionChecker stamps;
   stamp_filter().Check(&stamps);
@@ -61,6 +63,7 @@ DaemonOptions ParseDaemonOptions(common::ConfigReader& reader) {
   reader.Get("max_stamp_jump_s", &options.max_stamp_jump_s);
   reader.Get("max_time_reset_s", &options.max_time_reset_s);
   reader.Get("release_memory_period_s", &options.release_memory_period_s);
+  reader.Get("realtime_priority", &options.realtime_priority);
   reader.CheckOptions(options);
   return options;
 }

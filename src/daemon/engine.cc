@@ -1,10 +1,5 @@
 #include "fusemap/daemon/engine.h"
 
-#include <sched.h>
-#include <sys/resource.h>
-#include <sys/syscall.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <cassert>
 #include <cstdint>
@@ -14,6 +9,7 @@
 
 #include "fusemap/common/process_memory.h"
 #include "fusemap/daemon/resume.h"
+#include "fusemap/daemon/this_thread.h"
 #include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
@@ -36,33 +32,6 @@ constexpr size_t kVisualPoseQueueSize = 4096;
 // machine the SLAM thread, which publishes poses, gets the CPU first (issue 15: scan->pose p99).
 constexpr int kWorkerThreadNice = 5;
 constexpr int kVisualThreadNice = 10;
-
-// Lowering one's own thread priority needs no privilege; failing to is harmless.
-void LowerThisThreadPriority(int nice) {
-  setpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)), nice);
-}
-
-// The publisher runs for tens of microseconds per pose. With a short scheduler slice (Linux
-// >= 6.12, EEVDF; older kernels ignore it) its wake-up preempts a thread with a longer one at
-// once instead of waiting for that thread's slice to end (up to ~3 ms seen on the corridor
-// world). struct sched_attr as the kernel defines it; glibc 2.36 has no wrapper.
-void RequestShortSlice() {
-  struct {
-    uint32_t size;
-    uint32_t sched_policy;
-    uint64_t sched_flags;
-    int32_t sched_nice;
-    uint32_t sched_priority;
-    uint64_t sched_runtime;  // for SCHED_OTHER: the slice, ns
-    uint64_t sched_deadline;
-    uint64_t sched_period;
-  } attr{};
-  attr.size = sizeof(attr);
-  attr.sched_policy = SCHED_OTHER;
-  attr.sched_nice = getpriority(PRIO_PROCESS, static_cast<id_t>(syscall(SYS_gettid)));
-  attr.sched_runtime = 100'000;  // the kernel's minimum
-  syscall(SYS_sched_setattr, 0, &attr, 0);
-}
 
 std::chrono::steady_clock::duration Period(double rate_hz) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -88,8 +57,10 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
                      [this](const sensor::RgbdFrame&) { ++visual_frames_dropped_; }),
       release_memory_(common::ReleaseFreeMemory) {
   if (num_threads > 1) {
-    executor_ = std::make_unique<common::ThreadPool>(
-        num_threads, [] { LowerThisThreadPriority(kWorkerThreadNice); });
+    executor_ = std::make_unique<common::ThreadPool>(num_threads, [] {
+      SetThisThreadName("fusemap-worker");
+      LowerThisThreadPriority(kWorkerThreadNice);
+    });
   } else {
     executor_ = std::make_unique<common::InlineExecutor>();
   }
@@ -207,7 +178,20 @@ void Engine::Process(SensorMessage& message) {
   }
 }
 
+bool Engine::EnterPosePath(const char* thread_name) {
+  if (options_.realtime_priority == 0) return false;
+  std::string error;
+  if (SetThisThreadRealtime(options_.realtime_priority, &error)) return true;
+  if (log_ != nullptr) {
+    log_->Report("realtime_priority", std::string("daemon.realtime_priority: ") + thread_name +
+                                          " thread: " + error + "; it runs at normal priority");
+  }
+  return false;
+}
+
 void Engine::RunLocalSlam() {
+  SetThisThreadName("fusemap-slam");
+  EnterPosePath("SLAM");
   while (auto message = intake_.sensor_queue().Pop()) {
     Process(*message);
     MaybeCheckpoint(false);
@@ -243,6 +227,7 @@ void Engine::MaybeCheckpoint(bool force) {
 
 void Engine::RunRgbd() {
   using Clock = std::chrono::steady_clock;
+  SetThisThreadName("fusemap-rgbd");
   if (!cloud_worker_) {
     // Decoding images is the checker's work here: at the checker's priority, so that it never
     // takes the CPU from the SLAM thread (scan->pose latency, issue 17), and only for frames
@@ -325,6 +310,7 @@ void Engine::RunVisual() {
   using Clock = std::chrono::steady_clock;
   // A back-end that may lag: on a busy machine the SLAM thread (pose publication) gets the CPU
   // first.
+  SetThisThreadName("fusemap-visual");
   LowerThisThreadPriority(kVisualThreadNice);
   session::VisualStage* stage = session_->visual_stage();
   const auto publish = [this, stage] {
@@ -391,7 +377,8 @@ void Engine::PublishSubmapsAndLoops(double stamp_s) {
 }
 
 void Engine::RunPublisher() {
-  RequestShortSlice();
+  SetThisThreadName("fusemap-publish");
+  if (!EnterPosePath("publisher")) RequestShortSlice();
   using Clock = std::chrono::steady_clock;
   const auto submap_period = Period(options_.submap_list_rate_hz);
   const auto health_period = Period(options_.health_rate_hz);

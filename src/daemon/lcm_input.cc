@@ -1,11 +1,30 @@
 #include "fusemap/daemon/lcm_input.h"
 
+#include <cstdlib>
 #include <lcm/lcm-cpp.hpp>
 
 namespace fusemap {
 namespace daemon {
 
 bool IsLogUrl(const std::string& lcm_url) { return lcm_url.rfind("file://", 0) == 0; }
+
+bool ArrivesPaced(const std::string& lcm_url) {
+  if (!IsLogUrl(lcm_url)) return true;
+  const size_t query = lcm_url.find('?');
+  if (query == std::string::npos) return true;
+  // Parameters are name=value pairs separated by '&'.
+  size_t begin = query + 1;
+  while (begin <= lcm_url.size()) {
+    size_t end = lcm_url.find('&', begin);
+    if (end == std::string::npos) end = lcm_url.size();
+    const std::string parameter = lcm_url.substr(begin, end - begin);
+    if (parameter.rfind("speed=", 0) == 0) {
+      return std::strtod(parameter.c_str() + 6, nullptr) != 0.0;
+    }
+    begin = end + 1;
+  }
+  return true;
+}
 
 OverflowPolicy PolicyForUrl(const std::string& lcm_url) {
   return IsLogUrl(lcm_url) ? OverflowPolicy::kBlock : OverflowPolicy::kDropOldest;

@@ -88,6 +88,22 @@ TEST(DaemonOptionsTest, UnknownAndOutOfRangeDaemonKeysFailWithKey) {
       << error;
 }
 
+TEST(DaemonOptionsTest, RealtimePriorityIsOffByDefaultAndChecked) {
+  EXPECT_EQ(DaemonOptions().realtime_priority, 0);
+  io::SlamConfig slam;
+  DaemonOptions options;
+  std::string error;
+  ASSERT_TRUE(LoadDaemonConfig(WriteTemp("rt.yaml", "daemon:\n  realtime_priority: 20\n"), &slam,
+                               &options, &error))
+      << error;
+  EXPECT_EQ(options.realtime_priority, 20);
+  EXPECT_FALSE(LoadDaemonConfig(WriteTemp("rt100.yaml", "daemon:\n  realtime_priority: 100\n"),
+                                &slam, &options, &error));
+  EXPECT_NE(error.find("rt100.yaml:2: key 'daemon.realtime_priority': must be in [0, 99]"),
+            std::string::npos)
+      << error;
+}
+
 }  // namespace
 }  // namespace daemon
 }  // namespace fusemap

@@ -28,6 +28,17 @@ TEST(LcmInputTest, UrlKindAndPolicy) {
   EXPECT_EQ(PolicyForUrl("memq://"), OverflowPolicy::kDropOldest);
 }
 
+TEST(LcmInputTest, OnlyAnUnpacedLogArrivesUnpaced) {
+  EXPECT_TRUE(ArrivesPaced("udpm://239.255.76.67:7667?ttl=0"));
+  EXPECT_TRUE(ArrivesPaced("memq://"));
+  EXPECT_TRUE(ArrivesPaced("file:///tmp/x.lcm"));
+  EXPECT_TRUE(ArrivesPaced("file:///tmp/x.lcm?speed=1"));
+  EXPECT_TRUE(ArrivesPaced("file:///tmp/x.lcm?mode=r&speed=0.5"));
+  EXPECT_FALSE(ArrivesPaced("file:///tmp/x.lcm?speed=0"));
+  EXPECT_FALSE(ArrivesPaced("file:///tmp/x.lcm?mode=r&speed=0"));
+  EXPECT_FALSE(ArrivesPaced("file:///tmp/x.lcm?speed=0.0&start_timestamp=5"));
+}
+
 TEST(LcmInputTest, MissingLogIsReportedNotCrashed) {
   LcmInput input;
   std::string error;

@@ -20,6 +20,7 @@
 #include "fusemap/daemon/lcm_input.h"
 #include "fusemap/daemon/lcm_publisher.h"
 #include "fusemap/daemon/resume.h"
+#include "fusemap/daemon/this_thread.h"
 #include "fusemap/io/visual_keyframes_file.h"
 
 namespace fusemap {
@@ -120,6 +121,16 @@ int Run(const Args& args) {
   sigaddset(&signals, SIGTERM);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
+  if (options.realtime_priority > 0 && !daemon::ArrivesPaced(args.lcm_url)) {
+    // Read as fast as SLAM takes it, the SLAM thread never sleeps: under SCHED_FIFO it would
+    // hold a CPU and starve the workers (on one core, everything else).
+    if (!args.quiet) {
+      std::fprintf(stderr,
+                   "fusemapd: daemon.realtime_priority not applied: a speed=0 replay is not "
+                   "real time\n");
+    }
+    options.realtime_priority = 0;
+  }
   daemon::RateLimitedLog log(options.bad_message_log_interval_s);
   const daemon::OverflowPolicy policy = daemon::PolicyForUrl(args.lcm_url);
   daemon::LcmInput input;
@@ -184,6 +195,21 @@ int Run(const Args& args) {
   std::atomic<bool> input_done{false};
   daemon::LcmInput::End end = daemon::LcmInput::End::kStopped;
   std::thread handler([&] {
+    daemon::SetThisThreadName("fusemap-lcm");
+    // The handler takes each scan off the wire: it is on the pose path with the SLAM and
+    // publisher threads (daemon.realtime_priority).
+    if (options.realtime_priority > 0) {
+      std::string priority_error;
+      if (daemon::SetThisThreadRealtime(options.realtime_priority, &priority_error)) {
+        if (!args.quiet) {
+          std::fprintf(stderr, "fusemapd: pose path at SCHED_FIFO priority %d\n",
+                       options.realtime_priority);
+        }
+      } else {
+        log.Report("realtime_priority", "daemon.realtime_priority: LCM handler thread: " +
+                                            priority_error + "; it runs at normal priority");
+      }
+    }
     end = input.Run(stop);
     input_done = true;
   });

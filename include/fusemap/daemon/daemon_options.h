@@ -47,6 +47,12 @@ struct DaemonOptions {
   // submaps and checkpoint buffers released, spread over its per-thread arenas, so without
   // this the resident size creeps up over hours although the live heap is flat. 0 = never.
   double release_memory_period_s = 10.0;
+  // SCHED_FIFO priority (1-99) for the threads between a scan's receipt and its pose: the LCM
+  // handler, the SLAM thread and the publisher. They then preempt every other thread at
+  // wake-up, so that global SLAM's workers and the RGB-D and visual threads never delay a pose
+  // on a busy machine. Needs root, CAP_SYS_NICE or RLIMIT_RTPRIO; refused, it is logged once
+  // and those threads run at normal priority. 0 = normal scheduling.
+  int realtime_priority = 0;
 
   // Each field's rule, against its key (see common::OptionChecker).
   void Check(common::OptionChecker* check) const;

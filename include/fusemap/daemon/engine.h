@@ -112,6 +112,9 @@ class Engine {
     common::Rigid2d pose;
   };
 
+  // SLAM and publisher threads, on entry: with daemon.realtime_priority > 0, SCHED_FIFO at that
+  // priority (true); a refusal is logged once and the thread keeps its normal priority (false).
+  bool EnterPosePath(const char* thread_name);
   void RunLocalSlam();
   void RunPublisher();
   void RunRgbd();

@@ -19,6 +19,11 @@ namespace daemon {
 // True for LCM's log-file provider (file://...).
 bool IsLogUrl(const std::string& lcm_url);
 
+// Whether messages arrive at the pace they were sent: every live provider, and a log replayed
+// at a speed other than 0 (LCM's default is 1). A file://...?speed=0 log is read as fast as
+// the daemon takes it, so its SLAM thread is busy all the time.
+bool ArrivesPaced(const std::string& lcm_url);
+
 // The queues' overflow policy for a provider. A live network source must never block its
 // handler (the socket would overflow and LCM would drop silently), so the oldest data goes. A
 // log file has no real-time source: blocking the reader costs nothing and keeps a replay
