@@ -51,6 +51,9 @@ constexpr char kUsage[] =
     "checker runs on its own thread on the RGB-D frames: its decisions go to DIR/loops.tsv at\n"
     "shutdown, its keyframes to DIR/visual_keyframes.fmvk (restored by --resume); as they\n"
     "depend on its timing, a file:// replay then no longer equals fusemap_offline bit for bit.\n"
+    "With daemon.realtime_priority (config/daemon.yaml: 20) the LCM handler, SLAM and publisher\n"
+    "threads run under SCHED_FIFO (root, CAP_SYS_NICE or RLIMIT_RTPRIO; else logged, normal\n"
+    "priority; not for a speed=0 replay). Threads are named fusemap-* (top -H).\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
@@ -206,8 +209,8 @@ int Run(const Args& args) {
                        options.realtime_priority);
         }
       } else {
-        log.Report("realtime_priority", "daemon.realtime_priority: LCM handler thread: " +
-                                            priority_error + "; it runs at normal priority");
+        log.Report("daemon.realtime_priority",
+                   "LCM handler thread: " + priority_error + "; it runs at normal priority");
       }
     }
     end = input.Run(stop);
