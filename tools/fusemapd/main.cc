@@ -201,17 +201,9 @@ int Run(const Args& args) {
     daemon::SetThisThreadName("fusemap-lcm");
     // The handler takes each scan off the wire: it is on the pose path with the SLAM and
     // publisher threads (daemon.realtime_priority).
-    if (options.realtime_priority > 0) {
-      std::string priority_error;
-      if (daemon::SetThisThreadRealtime(options.realtime_priority, &priority_error)) {
-        if (!args.quiet) {
-          std::fprintf(stderr, "fusemapd: pose path at SCHED_FIFO priority %d\n",
-                       options.realtime_priority);
-        }
-      } else {
-        log.Report("daemon.realtime_priority",
-                   "LCM handler thread: " + priority_error + "; it runs at normal priority");
-      }
+    if (engine->EnterPosePath("LCM handler") && !args.quiet) {
+      std::fprintf(stderr, "fusemapd: pose path at SCHED_FIFO priority %d\n",
+                   options.realtime_priority);
     }
     end = input.Run(stop);
     input_done = true;

@@ -104,6 +104,12 @@ class Engine {
   int scans_processed() const { return scans_processed_; }
   int checkpoint_failures() const { return checkpoint_failures_; }
 
+  // Called on entry by each thread between a scan's receipt and its pose: the engine's SLAM and
+  // publisher threads and the LCM handler that feeds intake(). With daemon.realtime_priority >
+  // 0, SCHED_FIFO at that priority (true); a refusal is logged once and the thread keeps its
+  // normal priority (false).
+  bool EnterPosePath(const char* thread_name);
+
  private:
   struct OutputEvent {
     enum class Kind { kPose, kSubmapsMoved } kind = Kind::kPose;
@@ -112,9 +118,6 @@ class Engine {
     common::Rigid2d pose;
   };
 
-  // SLAM and publisher threads, on entry: with daemon.realtime_priority > 0, SCHED_FIFO at that
-  // priority (true); a refusal is logged once and the thread keeps its normal priority (false).
-  bool EnterPosePath(const char* thread_name);
   void RunLocalSlam();
   void RunPublisher();
   void RunRgbd();
