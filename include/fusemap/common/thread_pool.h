@@ -1,6 +1,8 @@
 #ifndef FUSEMAP_COMMON_THREAD_POOL_H_
 #define FUSEMAP_COMMON_THREAD_POOL_H_
 
+#include <semaphore.h>
+
 #include <condition_variable>
 #include <deque>
 #include <functional>
@@ -37,6 +39,11 @@ class InlineExecutor : public Executor {
 // is free. `on_worker_start`, if given, runs first on each worker's own thread (fusemapd lowers
 // the workers' priority there, so that background searches never take the CPU from pose
 // publication).
+// Schedule never waits for a worker to run: the workers are woken through a semaphore, not a
+// condition variable, whose signal in glibc can wait for a previously woken worker to get a CPU
+// (__condvar_quiesce_and_switch_g1). fusemapd's SLAM thread schedules searches for every node at
+// real-time priority while the workers run at low priority: that wait held scans for ~3 ms
+// (issue 17, the scan->pose p99).
 class ThreadPool : public Executor {
  public:
   explicit ThreadPool(int num_threads, std::function<void()> on_worker_start = {});
@@ -52,11 +59,10 @@ class ThreadPool : public Executor {
   void Work();
 
   std::mutex mutex_;
-  std::condition_variable work_available_;
+  sem_t work_available_;  // one post per task, and one per worker to stop it
   std::condition_variable idle_;
   std::deque<std::function<void()>> tasks_;  // guarded by mutex_
-  int running_ = 0;                           // guarded by mutex_
-  bool stopping_ = false;                     // guarded by mutex_
+  int running_ = 0;                          // guarded by mutex_
   std::vector<std::thread> workers_;
 };
 
