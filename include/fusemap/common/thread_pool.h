@@ -39,9 +39,9 @@ class InlineExecutor : public Executor {
 // is free. `on_worker_start`, if given, runs first on each worker's own thread (fusemapd lowers
 // the workers' priority there, so that background searches never take the CPU from pose
 // publication).
-// Schedule never waits for a worker to run: the workers are woken through a semaphore, not a
-// condition variable, whose signal in glibc can wait for a previously woken worker to get a CPU
-// (__condvar_quiesce_and_switch_g1). fusemapd's SLAM thread schedules searches for every node at
+// Schedule does not wait for a worker to get a CPU (only for the queue's lock, held for a push or
+// a pop): the workers are woken through a semaphore, not a condition variable, whose signal in
+// glibc can wait for a previously woken worker to get a CPU (__condvar_quiesce_and_switch_g1). fusemapd's SLAM thread schedules searches for every node at
 // real-time priority while the workers run at low priority: that wait held scans for ~3 ms
 // (issue 17, the scan->pose p99).
 class ThreadPool : public Executor {
