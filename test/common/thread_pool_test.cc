@@ -14,7 +14,6 @@
 #include <future>
 #include <mutex>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
