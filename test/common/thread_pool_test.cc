@@ -156,7 +156,6 @@ TEST(ThreadPoolTest, ScheduleNeverWaitsForAWokenWorkerToRun) {
     std::string skip;  // why the test could not run
     std::string error;
     long blocked_switches = -1;
-    int done = 0;
   };
   std::atomic<bool> hog{true};
   std::atomic<bool> hogging{false};
@@ -224,14 +223,13 @@ TEST(ThreadPoolTest, ScheduleNeverWaitsForAWokenWorkerToRun) {
     hog = false;
     spinner.join();
     pool.WaitIdle();
-    outcome.done = done;
   });
   caller.join();
   if (!outcome.skip.empty()) GTEST_SKIP() << outcome.skip;
   ASSERT_TRUE(outcome.error.empty()) << outcome.error;
   EXPECT_EQ(outcome.blocked_switches, 0) << "Schedule slept while no worker could run";
   EXPECT_FALSE(spinner_gave_up);
-  EXPECT_EQ(outcome.done, 4);
+  EXPECT_EQ(done.load(), 4);
 }
 
 TEST(InlineExecutorTest, RunsImmediately) {

@@ -41,9 +41,9 @@ class InlineExecutor : public Executor {
 // publication).
 // Schedule does not wait for a worker to get a CPU (only for the queue's lock, held for a push or
 // a pop): the workers are woken through a semaphore, not a condition variable, whose signal in
-// glibc can wait for a previously woken worker to get a CPU (__condvar_quiesce_and_switch_g1). fusemapd's SLAM thread schedules searches for every node at
-// real-time priority while the workers run at low priority: that wait held scans for ~3 ms
-// (issue 17, the scan->pose p99).
+// glibc can wait for a previously woken worker to get a CPU (__condvar_quiesce_and_switch_g1).
+// fusemapd's SLAM thread schedules searches for every node at real-time priority while the
+// workers run at low priority: that wait held scans for ~3 ms (issue 17, the scan->pose p99).
 class ThreadPool : public Executor {
  public:
   explicit ThreadPool(int num_threads, std::function<void()> on_worker_start = {});
