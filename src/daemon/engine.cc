@@ -15,8 +15,6 @@ namespace fusemap {
 namespace daemon {
 namespace {
 
-// Pose outputs are small and frequent; if the publisher falls behind, old poses are worthless.
-constexpr size_t kOutputQueueSize = 256;
 // Scan poses for the cloud mapper (~25 Hz); the RGB-D thread drains them between frames, so
 // this only fills if it stalls for seconds, and then the SLAM thread waits rather than the
 // cloud losing poses.
@@ -47,7 +45,8 @@ Engine::Engine(const io::SlamConfig& slam, const DaemonOptions& options, int num
       log_(log),
       start_(std::chrono::steady_clock::now()),
       intake_(slam, options, policy, log),
-      outputs_(kOutputQueueSize, OverflowPolicy::kDropOldest),
+      // One pending wake-up says all there is to say: the report thread reads the graph's newest.
+      submaps_moved_(1, OverflowPolicy::kDropOldest),
       cloud_poses_(kCloudPoseQueueSize, OverflowPolicy::kBlock),
       visual_poses_(kVisualPoseQueueSize, OverflowPolicy::kDropOldest,
                     [this](const session::CloudPoseUpdate&) { ++visual_poses_dropped_; }),
@@ -87,13 +86,9 @@ bool Engine::DecodesRgbd() const {
 }
 
 void Engine::ConnectSession() {
-  // Only a wake-up for the publisher: the cloud learns what moved from the session.
+  // Only a wake-up for the report thread: the cloud learns what moved from the session.
   session_->builder().pose_graph().AddSubmapsMovedCallback(
-      [this](const std::vector<pose_graph::SubmapMove>&) {
-        OutputEvent event;
-        event.kind = OutputEvent::Kind::kSubmapsMoved;
-        outputs_.Push(std::move(event));
-      });
+      [this](const std::vector<pose_graph::SubmapMove>&) { submaps_moved_.Push({}); });
 }
 
 void Engine::Restore(const pose_graph::MapBuilderState2D& state,
@@ -128,11 +123,12 @@ void Engine::Start() {
   if (started_) return;
   started_ = true;
   last_checkpoint_ = std::chrono::steady_clock::now();
+  next_release_ = (last_checkpoint_ + ReleasePeriod()).time_since_epoch().count();
   if (session_->cloud_stage() != nullptr) {
     cloud_worker_ = std::make_unique<CloudWorker>(session_->cloud_stage(), cloud_publisher_);
   }
   slam_thread_ = std::thread([this] { RunLocalSlam(); });
-  publisher_thread_ = std::thread([this] { RunPublisher(); });
+  report_thread_ = std::thread([this] { RunReporter(); });
   rgbd_thread_ = std::thread([this] { RunRgbd(); });
   if (session_->visual_stage() != nullptr) visual_thread_ = std::thread([this] { RunVisual(); });
 }
@@ -150,8 +146,8 @@ void Engine::Finish() {
   slam_thread_.join();
   rgbd_thread_.join();
   if (visual_thread_.joinable()) visual_thread_.join();
-  outputs_.Close();
-  publisher_thread_.join();
+  submaps_moved_.Close();
+  report_thread_.join();
 }
 
 void Engine::Process(SensorMessage& message) {
@@ -161,13 +157,15 @@ void Engine::Process(SensorMessage& message) {
     ++scans_processed_;
     last_stamp_s_ = scan->stamp_s;
     if (pose) {
-      OutputEvent event;
-      event.received = message.received;
-      event.stamp_s = scan->stamp_s;
-      event.pose = pose->T_map_tracking;
-      outputs_.Push(std::move(event));
+      // Here, not on a thread of its own: handing the pose over cost its wake-up, 1.5-3 ms in
+      // the slowest scans on an idle core of a virtual machine (issue 17), for a send of
+      // microseconds.
+      publisher_->PublishPose(scan->stamp_s, pose->T_map_tracking);
+      const auto published = Clock::now();
+      latency_.Add(std::chrono::duration<double, std::milli>(published - message.received).count());
+      MaybeReleaseMemory(published, Clock::duration::zero());
     }
-    // After the pose: the work this wakes may take this thread's CPU before the publisher's.
+    // After the pose: the checker's work this releases starts after the publication.
     // Only the checker waits on the gate: without it, no lock on this thread's path.
     if (session_->visual_stage() != nullptr) scan_gap_.ScanDone(std::chrono::steady_clock::now());
   } else if (auto* odometry = std::get_if<sensor::OdometryData>(&message.data)) {
@@ -375,49 +373,42 @@ void Engine::PublishSubmapsAndLoops(double stamp_s) {
   }
 }
 
-void Engine::RunPublisher() {
-  SetThisThreadName("fusemap-publish");
-  // It runs for tens of microseconds per pose; without SCHED_FIFO a short slice still lets its
-  // wake-up preempt a running thread instead of waiting up to ~3 ms for that one's slice.
-  if (!EnterPosePath("publisher")) RequestShortSlice();
-  using Clock = std::chrono::steady_clock;
+Engine::Clock::duration Engine::ReleasePeriod() const {
+  return std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(options_.release_memory_period_s));
+}
+
+void Engine::MaybeReleaseMemory(Clock::time_point now, Clock::duration late) {
+  if (options_.release_memory_period_s <= 0.0) return;
+  Clock::rep due = next_release_.load();
+  if (now.time_since_epoch().count() < due + late.count()) return;
+  // One hand-over per period even when both threads find it due at once.
+  if (!next_release_.compare_exchange_strong(due,
+                                             (now + ReleasePeriod()).time_since_epoch().count())) {
+    return;
+  }
+  executor_->ScheduleFirst(release_memory_);
+}
+
+void Engine::RunReporter() {
+  SetThisThreadName("fusemap-report");
   const auto submap_period = Period(options_.submap_list_rate_hz);
   const auto health_period = Period(options_.health_rate_hz);
-  const bool release_memory = options_.release_memory_period_s > 0.0;
-  const auto release_period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(release_memory ? options_.release_memory_period_s : 1.0));
   auto next_submaps = Clock::now() + submap_period;
   auto next_health = Clock::now() + health_period;
-  auto next_release = release_memory ? Clock::now() + release_period : Clock::time_point::max();
-  // malloc_trim takes 3-18 ms with the checker's images in the heap (corridor world): on this
-  // thread it held back the poses behind it (3 of the 5 slowest scans). A worker runs it (with
-  // one thread, this one, inline), right after a pose, at the start of the gap before the next
-  // scan; without scans, a period late.
-  const auto release = [&] {
-    executor_->ScheduleFirst(release_memory_);
-    next_release = Clock::now() + release_period;
-  };
-  const auto overdue = [&] {
-    return next_release == Clock::time_point::max() ? next_release : next_release + release_period;
+  // malloc_trim takes 3-18 ms with the checker's images in the heap (corridor world). The SLAM
+  // thread hands it to a worker right after a pose, at the start of the gap before the next
+  // scan; without scans this thread does, a period late.
+  const auto release_overdue = [&] {
+    if (options_.release_memory_period_s <= 0.0) return Clock::time_point::max();
+    return Clock::time_point(Clock::duration(next_release_.load())) + ReleasePeriod();
   };
   while (true) {
-    auto event = outputs_.PopUntil(std::min({next_submaps, next_health, overdue()}));
-    if (event) {
-      if (event->kind == OutputEvent::Kind::kPose) {
-        publisher_->PublishPose(event->stamp_s, event->pose);
-        const auto published = Clock::now();
-        latency_.Add(
-            std::chrono::duration<double, std::milli>(published - event->received).count());
-        if (published >= next_release) release();
-      } else {
-        PublishSubmapsAndLoops(last_stamp_s_);
-        next_submaps = Clock::now() + submap_period;
-      }
-    } else if (outputs_.closed_and_drained()) {
-      break;
-    }
+    const auto moved =
+        submaps_moved_.PopUntil(std::min({next_submaps, next_health, release_overdue()}));
+    if (!moved && submaps_moved_.closed_and_drained()) break;
     const auto now = Clock::now();
-    if (now >= next_submaps) {
+    if (moved || now >= next_submaps) {
       PublishSubmapsAndLoops(last_stamp_s_);
       next_submaps = now + submap_period;
     }
@@ -425,7 +416,7 @@ void Engine::RunPublisher() {
       publisher_->PublishHealth(last_stamp_s_, Health());
       next_health = now + health_period;
     }
-    if (now >= overdue()) release();
+    MaybeReleaseMemory(now, ReleasePeriod());
   }
   PublishSubmapsAndLoops(last_stamp_s_);
   publisher_->PublishHealth(last_stamp_s_, Health());

@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <cerrno>
-#include <cstdint>
 #include <cstring>
 #include <string>
 
@@ -24,25 +23,6 @@ void SetThisThreadName(const std::string& name) {
 }
 
 void LowerThisThreadPriority(int nice) { setpriority(PRIO_PROCESS, ThisThreadId(), nice); }
-
-void RequestShortSlice() {
-  // struct sched_attr as the kernel defines it; glibc 2.36 has no wrapper.
-  struct {
-    uint32_t size;
-    uint32_t sched_policy;
-    uint64_t sched_flags;
-    int32_t sched_nice;
-    uint32_t sched_priority;
-    uint64_t sched_runtime;  // for SCHED_OTHER: the slice, ns
-    uint64_t sched_deadline;
-    uint64_t sched_period;
-  } attr{};
-  attr.size = sizeof(attr);
-  attr.sched_policy = SCHED_OTHER;
-  attr.sched_nice = getpriority(PRIO_PROCESS, ThisThreadId());
-  attr.sched_runtime = 100'000;  // the kernel's minimum
-  syscall(SYS_sched_setattr, 0, &attr, 0);
-}
 
 bool SetThisThreadRealtime(int priority, std::string* error) {
   const int min_priority = sched_get_priority_min(SCHED_FIFO);

@@ -6,8 +6,10 @@
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
+#include <functional>
 #include <future>
 #include <mutex>
+#include <vector>
 
 #include "fusemap/daemon/publisher.h"
 #include "testing/room_drive_log.h"
@@ -17,7 +19,8 @@ namespace fusemap {
 namespace daemon {
 namespace {
 
-// Counts poses; the test waits on the count.
+// Counts poses; the test waits on the count. `on_submap_list`, if set, runs in each
+// PublishSubmapList.
 class PoseCounter : public Publisher {
  public:
   void PublishPose(double, const common::Rigid2d&) override {
@@ -25,10 +28,14 @@ class PoseCounter : public Publisher {
     ++poses_;
     changed_.notify_all();
   }
-  void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot&) override {}
+  void PublishSubmapList(double, const pose_graph::PoseGraphSnapshot&) override {
+    if (on_submap_list) on_submap_list();
+  }
   void PublishLoopClosure(double, int, const pose_graph::PoseGraph2D::Stats&, int,
                           const io::LoopNote&) override {}
   void PublishHealth(double, const HealthReport&) override {}
+
+  std::function<void()> on_submap_list;  // set before the engine starts
 
   int poses() const {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -47,52 +54,102 @@ class PoseCounter : public Publisher {
   int poses_ = 0;
 };
 
+// Feeds the room drive's messages to an engine's intake, a number of scans at a time.
+class RoomFeeder {
+ public:
+  explicit RoomFeeder(Engine* engine)
+      : engine_(engine), messages_(test_world::RoomDriveMessages(0.15, 1700000000.0, 42)) {}
+  void FeedScans(int count) {
+    const int until = scans_ + count;
+    for (; next_ < messages_.size() && scans_ < until; ++next_) {
+      const auto& message = messages_[next_];
+      engine_->intake().OnMessage(message.channel, message.data.data(),
+                                  static_cast<int>(message.data.size()));
+      if (message.channel == "LIDAR") ++scans_;
+    }
+  }
+
+ private:
+  Engine* const engine_;
+  const std::vector<test_world::EncodedMessage> messages_;
+  size_t next_ = 0;
+  int scans_ = 0;
+};
+
+// A call that blocks its thread until the test lets it go (once; later calls return at once),
+// telling the test when it started.
+class Gate {
+ public:
+  void Block() {
+    if (!first_.exchange(false)) return;
+    started_.set_value();
+    may_end_.wait();
+  }
+  bool WaitUntilBlocked(std::chrono::seconds timeout) {
+    return started_future_.wait_for(timeout) == std::future_status::ready;
+  }
+  void Open() { may_end_promise_.set_value(); }
+
+ private:
+  std::atomic<bool> first_{true};
+  std::promise<void> started_;
+  std::future<void> started_future_ = started_.get_future();
+  std::promise<void> may_end_promise_;
+  std::shared_future<void> may_end_ = may_end_promise_.get_future().share();
+};
+
 // malloc_trim took 3-18 ms on fusemapd's publisher thread (checker on, corridor world), and
 // every pose queued meanwhile waited for it. A release that does not return at all shows it
 // plainly: poses must keep coming while it runs.
 TEST(EngineTest, ReleasingMemoryHoldsBackNoPose) {
   DaemonOptions options;
   options.release_memory_period_s = 1e-3;  // due after the first pose
-  // Declared before the engine, which may still run a release while it is destroyed.
-  std::promise<void> release_started;
-  std::promise<void> release_may_end;
-  std::shared_future<void> may_end = release_may_end.get_future().share();
-  std::atomic<bool> first{true};  // only the first release waits (the test's)
+  Gate release;  // declared before the engine, which may still run a release while destroyed
   PoseCounter publisher;
   Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
                 nullptr);
-  engine.SetMemoryRelease([&, may_end] {
-    if (!first.exchange(false)) return;
-    release_started.set_value();
-    may_end.wait();
-  });
+  engine.SetMemoryRelease([&release] { release.Block(); });
   engine.Start();
-
-  const auto messages = test_world::RoomDriveMessages(0.15, 1700000000.0, 42);
+  RoomFeeder feeder(&engine);
   constexpr int kScans = 40;
-  int scans = 0;
-  size_t next = 0;
-  const auto feed_scans = [&](int count) {
-    const int until = scans + count;
-    for (; next < messages.size() && scans < until; ++next) {
-      const auto& message = messages[next];
-      engine.intake().OnMessage(message.channel, message.data.data(),
-                                static_cast<int>(message.data.size()));
-      if (message.channel == "LIDAR") ++scans;
-    }
-  };
-  feed_scans(5);
-  ASSERT_EQ(release_started.get_future().wait_for(std::chrono::seconds(60)),
-            std::future_status::ready)
+  feeder.FeedScans(5);
+  ASSERT_TRUE(release.WaitUntilBlocked(std::chrono::seconds(60)))
       << "no memory release within a minute of the first poses";
   const int poses_before = publisher.poses();
-  feed_scans(kScans);
+  feeder.FeedScans(kScans);
   const bool published = publisher.WaitForPoses(poses_before + kScans, std::chrono::seconds(60));
   const int published_meanwhile = publisher.poses() - poses_before;
-  release_may_end.set_value();
+  release.Open();
   engine.Finish();
   EXPECT_TRUE(published) << "poses while the release ran: " << published_meanwhile << " of "
                          << kScans;
+}
+
+// The submap list, loop-closure events and health go out on a thread that may lag; the poses
+// once shared a thread with them, and one that did not return (a slow subscriber, a graph lock
+// held by an optimisation) held back every pose behind it.
+TEST(EngineTest, AStuckReportHoldsBackNoPose) {
+  DaemonOptions options;
+  options.submap_list_rate_hz = 1000.0;  // due at once
+  Gate report;
+  PoseCounter publisher;
+  publisher.on_submap_list = [&report] { report.Block(); };
+  Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
+                nullptr);
+  engine.Start();
+  RoomFeeder feeder(&engine);
+  constexpr int kScans = 40;
+  feeder.FeedScans(5);
+  ASSERT_TRUE(report.WaitUntilBlocked(std::chrono::seconds(60)))
+      << "no submap list within a minute of the first poses";
+  const int poses_before = publisher.poses();
+  feeder.FeedScans(kScans);
+  const bool published = publisher.WaitForPoses(poses_before + kScans, std::chrono::seconds(60));
+  const int published_meanwhile = publisher.poses() - poses_before;
+  report.Open();
+  engine.Finish();
+  EXPECT_TRUE(published) << "poses while the submap list was stuck: " << published_meanwhile
+                         << " of " << kScans;
 }
 
 }  // namespace

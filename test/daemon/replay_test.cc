@@ -88,7 +88,8 @@ class RecordingPublisher : public Publisher {
     ++health;
     last_health = r;
   }
-  // Only the engine's publisher thread writes; the test reads after Finish() joined it.
+  // The engine's SLAM thread writes `poses`, its report thread the rest; the test reads after
+  // Finish() joined both.
   int poses = 0, submap_lists = 0, loop_closures = 0, health = 0, last_submaps = 0;
   HealthReport last_health;
 };

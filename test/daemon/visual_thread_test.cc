@@ -34,7 +34,8 @@ class LoopRecorder : public Publisher {
     notes.push_back(note);
   }
   void PublishHealth(double, const HealthReport& r) override { last_health = r; }
-  // Only the engine's publisher thread writes; the test reads after Finish() joined it.
+  // The engine's SLAM thread writes `poses`, its report thread the rest; the test reads after
+  // Finish() joined both.
   int poses = 0;
   std::vector<io::LoopNote> notes;
   HealthReport last_health;

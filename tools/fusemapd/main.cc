@@ -51,9 +51,10 @@ constexpr char kUsage[] =
     "checker runs on its own thread on the RGB-D frames: its decisions go to DIR/loops.tsv at\n"
     "shutdown, its keyframes to DIR/visual_keyframes.fmvk (restored by --resume); as they\n"
     "depend on its timing, a file:// replay then no longer equals fusemap_offline bit for bit.\n"
-    "With daemon.realtime_priority (config/daemon.yaml: 20) the LCM handler, SLAM and publisher\n"
-    "threads run under SCHED_FIFO (root, CAP_SYS_NICE or RLIMIT_RTPRIO; else logged, normal\n"
-    "priority; not for a speed=0 replay). Threads are named fusemap-* (top -H).\n"
+    "With daemon.realtime_priority (config/daemon.yaml: 20) the LCM handler and the SLAM thread\n"
+    "(which publishes the poses) run under SCHED_FIFO (root, CAP_SYS_NICE or RLIMIT_RTPRIO;\n"
+    "else logged, normal priority; not for a speed=0 replay). Threads are named fusemap-*\n"
+    "(top -H).\n"
     "\n"
     "  --config FILE   SLAM profile (config/*.yaml) with an optional daemon: section\n"
     "  --lcm-url URL   e.g. udpm://239.255.76.67:7667?ttl=0, or file:///path/log.lcm?speed=0 to\n"
@@ -199,8 +200,8 @@ int Run(const Args& args) {
   daemon::LcmInput::End end = daemon::LcmInput::End::kStopped;
   std::thread handler([&] {
     daemon::SetThisThreadName("fusemap-lcm");
-    // The handler takes each scan off the wire: it is on the pose path with the SLAM and
-    // publisher threads (daemon.realtime_priority).
+    // The handler takes each scan off the wire: it is on the pose path with the SLAM thread
+    // (daemon.realtime_priority).
     if (engine->EnterPosePath("LCM handler") && !args.quiet) {
       std::fprintf(stderr, "fusemapd: pose path at SCHED_FIFO priority %d\n",
                    options.realtime_priority);

@@ -31,8 +31,9 @@ namespace daemon {
 // The daemon without the network: threads and queues around the session::SlamSession that
 // fusemap_offline drives too. Intake queues; the SLAM thread feeding the session; global
 // optimisation on the executor (a ThreadPool, or inline on the SLAM thread with one thread:
-// then runs are bit-for-bit reproducible); a publisher thread (pose per scan, submap list at a
-// rate and after every optimisation, loop-closure events, health); an RGB-D thread that runs
+// then runs are bit-for-bit reproducible), the SLAM thread publishing each scan's pose itself;
+// a report thread (submap list at a rate and after every optimisation, loop-closure events,
+// health) that may lag without holding back a pose; an RGB-D thread that runs
 // the session's cloud stage on the pose updates the SLAM thread queues for it; with
 // visual_loop.enabled a visual thread that runs the session's visual stage (the ORB visual loop
 // checker, a back-end that may lag) on the same pose updates and the frames the RGB-D thread
@@ -72,9 +73,9 @@ class Engine {
   // changed, and at shutdown. Failures count as checkpoint failures.
   void SetVisualKeyframesFile(const std::string& path) { visual_keyframes_path_ = path; }
   // Before Start(): what hands freed heap pages back to the system every
-  // daemon.release_memory_period_s (default common::ReleaseFreeMemory). The publisher thread
-  // hands it to the executor right after a pose: a worker runs it (with one thread, the
-  // publisher itself, inline, so the next pose waits until it ends).
+  // daemon.release_memory_period_s (default common::ReleaseFreeMemory). The SLAM thread hands
+  // it to the executor right after a pose, the report thread when no pose has come for a
+  // period: a worker runs it (with one thread, the thread that handed it, inline).
   void SetMemoryRelease(std::function<void()> release) { release_memory_ = std::move(release); }
   // Before Start(), after Restore(): the visual checker continues with saved keyframes. Those
   // tied to nodes the restored graph does not have (saved after its checkpoint) are left out,
@@ -104,22 +105,19 @@ class Engine {
   int scans_processed() const { return scans_processed_; }
   int checkpoint_failures() const { return checkpoint_failures_; }
 
-  // Called on entry by each thread between a scan's receipt and its pose: the engine's SLAM and
-  // publisher threads and the LCM handler that feeds intake(). With daemon.realtime_priority >
+  // Called on entry by each thread between a scan's receipt and its pose: the engine's SLAM
+  // thread and the LCM handler that feeds intake(). With daemon.realtime_priority >
   // 0, SCHED_FIFO at that priority (true); a refusal is logged once and the thread keeps its
   // normal priority (false).
   bool EnterPosePath(const char* thread_name);
 
  private:
-  struct OutputEvent {
-    enum class Kind { kPose, kSubmapsMoved } kind = Kind::kPose;
-    std::chrono::steady_clock::time_point received;
-    double stamp_s = 0.0;
-    common::Rigid2d pose;
-  };
+  using Clock = std::chrono::steady_clock;
+  // A wake-up for the report thread: an optimisation moved submaps.
+  struct SubmapsMoved {};
 
   void RunLocalSlam();
-  void RunPublisher();
+  void RunReporter();
   void RunRgbd();
   void RunVisual();
   // RGB-D thread: a decoded frame for the visual thread (those the checker would skip anyway,
@@ -130,6 +128,12 @@ class Engine {
   // Visual thread: its keyframes to visual_keyframes_path_.
   void SaveVisualKeyframes(const session::VisualStage& stage);
   void Process(SensorMessage& message);
+  // SLAM thread, right after a pose (`late` zero), or report thread (`late` one period): hands
+  // release_memory_ to the executor once daemon.release_memory_period_s + `late` has passed
+  // since the last hand-over.
+  void MaybeReleaseMemory(Clock::time_point now, Clock::duration late);
+  // daemon.release_memory_period_s as a duration.
+  Clock::duration ReleasePeriod() const;
   void MaybeCheckpoint(bool force);
   void PublishSubmapsAndLoops(double stamp_s);
   void ConnectSession();
@@ -144,10 +148,14 @@ class Engine {
   CloudRegionPublisher* cloud_publisher_ = nullptr;
   const std::chrono::steady_clock::time_point start_;
 
-  // Declared before the builder so that they outlive it (its callbacks push into outputs_).
+  // Declared before the builder so that they outlive it (its callbacks push into
+  // submaps_moved_).
   Intake intake_;
-  BoundedQueue<OutputEvent> outputs_;
+  BoundedQueue<SubmapsMoved> submaps_moved_;
   LatencyWindow latency_;
+  // When the next memory release is due (Clock ticks since its epoch; set by Start()): SLAM
+  // and report threads.
+  std::atomic<Clock::rep> next_release_{0};
   // SLAM thread → RGB-D thread: the session's pose updates for its cloud stage.
   BoundedQueue<session::CloudPoseUpdate> cloud_poses_;
   // SLAM thread → visual thread: pose updates (never blocking the SLAM thread; at 25 Hz this
@@ -174,12 +182,12 @@ class Engine {
   std::atomic<int> scans_processed_{0};
   std::atomic<int> checkpoint_failures_{0};
   std::atomic<double> last_stamp_s_{0.0};
-  // Visual thread → publisher: its counters and newest decision, copied after each change.
+  // Visual thread → report thread: its counters and newest decision, copied after each change.
   mutable std::mutex visual_mutex_;
   session::VisualStageStats visual_stats_;  // guarded by visual_mutex_
   size_t visual_records_ = 0;               // guarded by visual_mutex_
   io::LoopNote newest_loop_;                // guarded by visual_mutex_
-  // Publisher thread only.
+  // Report thread only.
   int published_loop_closures_ = 0;
   size_t published_visual_records_ = 0;
 
@@ -187,7 +195,7 @@ class Engine {
   bool started_ = false;   // guarded by finish_mutex_
   bool finished_ = false;  // guarded by finish_mutex_
   std::thread slam_thread_;
-  std::thread publisher_thread_;
+  std::thread report_thread_;
   std::thread rgbd_thread_;
   std::thread visual_thread_;  // with visual_loop.enabled
 };

@@ -13,8 +13,9 @@
 namespace fusemap {
 namespace daemon {
 
-// Where the engine's outputs go; called only from the engine's publisher thread. LcmPublisher
-// puts them on the wire; tests record them.
+// Where the engine's outputs go. PublishPose is called only from the engine's SLAM thread, the
+// others only from its report thread, so the two may run at the same time. LcmPublisher puts
+// them on the wire; tests record them.
 class Publisher {
  public:
   virtual ~Publisher() = default;

@@ -8,7 +8,7 @@ namespace daemon {
 
 // Name and scheduling of the calling thread (Linux schedules threads, not processes). The
 // daemon's threads are of two kinds: those between a scan's receipt and its pose (LCM handler,
-// SLAM thread, publisher) and those that may lag (global SLAM's workers, the RGB-D and visual
+// SLAM thread) and those that may lag (global SLAM's workers, the report, RGB-D and visual
 // threads).
 
 // Names the calling thread for top -H, ps -L, perf and gdb ("fusemap-slam"); Linux keeps the
@@ -18,11 +18,6 @@ void SetThisThreadName(const std::string& name);
 // Raises the calling thread's nice value to `nice` (a lower priority). Needs no privilege;
 // failing to is harmless, so it reports nothing.
 void LowerThisThreadPriority(int nice);
-
-// Asks for the kernel's shortest scheduler slice (0.1 ms). Linux >= 6.12 (EEVDF) lets a thread
-// with a shorter slice preempt at wake-up one with a longer one instead of waiting for that
-// thread's slice to end (up to ~3 ms); older kernels ignore the request.
-void RequestShortSlice();
 
 // Puts the calling thread under SCHED_FIFO at `priority` (1-99): it then preempts every
 // normally scheduled thread at wake-up. Needs root, CAP_SYS_NICE or an RLIMIT_RTPRIO of at
