@@ -88,7 +88,10 @@ class Gate {
   bool WaitUntilBlocked(std::chrono::seconds timeout) {
     return started_future_.wait_for(timeout) == std::future_status::ready;
   }
-  void Open() { may_end_promise_.set_value(); }
+  // Idempotent.
+  void Open() {
+    std::call_once(opened_, [this] { may_end_promise_.set_value(); });
+  }
 
  private:
   std::atomic<bool> first_{true};
@@ -96,6 +99,20 @@ class Gate {
   std::future<void> started_future_ = started_.get_future();
   std::promise<void> may_end_promise_;
   std::shared_future<void> may_end_ = may_end_promise_.get_future().share();
+  std::once_flag opened_;
+};
+
+// Opens a gate when the test leaves, a failed assertion too, before the engine declared ahead of
+// it joins its threads (one may be blocked in the gate).
+class OpenAtExit {
+ public:
+  explicit OpenAtExit(Gate* gate) : gate_(gate) {}
+  ~OpenAtExit() { gate_->Open(); }
+  OpenAtExit(const OpenAtExit&) = delete;
+  OpenAtExit& operator=(const OpenAtExit&) = delete;
+
+ private:
+  Gate* const gate_;
 };
 
 // malloc_trim took 3-18 ms on fusemapd's publisher thread (checker on, corridor world), and
@@ -109,6 +126,7 @@ TEST(EngineTest, ReleasingMemoryHoldsBackNoPose) {
   Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
                 nullptr);
   engine.SetMemoryRelease([&release] { release.Block(); });
+  const OpenAtExit open_at_exit(&release);
   engine.Start();
   RoomFeeder feeder(&engine);
   constexpr int kScans = 40;
@@ -136,6 +154,7 @@ TEST(EngineTest, AStuckReportHoldsBackNoPose) {
   publisher.on_submap_list = [&report] { report.Block(); };
   Engine engine(test_world::RoomSlamConfig(), options, 2, OverflowPolicy::kBlock, &publisher,
                 nullptr);
+  const OpenAtExit open_at_exit(&report);
   engine.Start();
   RoomFeeder feeder(&engine);
   constexpr int kScans = 40;
