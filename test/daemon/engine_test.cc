@@ -115,6 +115,28 @@ class OpenAtExit {
   Gate* const gate_;
 };
 
+// Feeds the room drive to a started engine until `gate` holds a thread, then kScans more while it
+// holds; succeeds when all their poses come out meanwhile. Opens the gate and finishes the engine
+// unless the gate never closed (then the test's OpenAtExit opens it).
+::testing::AssertionResult PosesFlowWhileHeld(Engine* engine, Gate* gate, PoseCounter* publisher,
+                                              const char* what) {
+  RoomFeeder feeder(engine);
+  constexpr int kScans = 40;
+  feeder.FeedScans(5);
+  if (!gate->WaitUntilBlocked(std::chrono::seconds(60))) {
+    return ::testing::AssertionFailure() << "no " << what << " within a minute of the first poses";
+  }
+  const int poses_before = publisher->poses();
+  feeder.FeedScans(kScans);
+  const bool published = publisher->WaitForPoses(poses_before + kScans, std::chrono::seconds(60));
+  const int published_meanwhile = publisher->poses() - poses_before;
+  gate->Open();
+  engine->Finish();
+  if (published) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure()
+         << "poses while the " << what << " was held: " << published_meanwhile << " of " << kScans;
+}
+
 // malloc_trim took 3-18 ms on fusemapd's publisher thread (checker on, corridor world), and
 // every pose queued meanwhile waited for it. A release that does not return at all shows it
 // plainly: poses must keep coming while it runs.
@@ -128,19 +150,7 @@ TEST(EngineTest, ReleasingMemoryHoldsBackNoPose) {
   engine.SetMemoryRelease([&release] { release.Block(); });
   const OpenAtExit open_at_exit(&release);
   engine.Start();
-  RoomFeeder feeder(&engine);
-  constexpr int kScans = 40;
-  feeder.FeedScans(5);
-  ASSERT_TRUE(release.WaitUntilBlocked(std::chrono::seconds(60)))
-      << "no memory release within a minute of the first poses";
-  const int poses_before = publisher.poses();
-  feeder.FeedScans(kScans);
-  const bool published = publisher.WaitForPoses(poses_before + kScans, std::chrono::seconds(60));
-  const int published_meanwhile = publisher.poses() - poses_before;
-  release.Open();
-  engine.Finish();
-  EXPECT_TRUE(published) << "poses while the release ran: " << published_meanwhile << " of "
-                         << kScans;
+  EXPECT_TRUE(PosesFlowWhileHeld(&engine, &release, &publisher, "memory release"));
 }
 
 // The submap list, loop-closure events and health go out on a thread that may lag; the poses
@@ -156,19 +166,7 @@ TEST(EngineTest, AStuckReportHoldsBackNoPose) {
                 nullptr);
   const OpenAtExit open_at_exit(&report);
   engine.Start();
-  RoomFeeder feeder(&engine);
-  constexpr int kScans = 40;
-  feeder.FeedScans(5);
-  ASSERT_TRUE(report.WaitUntilBlocked(std::chrono::seconds(60)))
-      << "no submap list within a minute of the first poses";
-  const int poses_before = publisher.poses();
-  feeder.FeedScans(kScans);
-  const bool published = publisher.WaitForPoses(poses_before + kScans, std::chrono::seconds(60));
-  const int published_meanwhile = publisher.poses() - poses_before;
-  report.Open();
-  engine.Finish();
-  EXPECT_TRUE(published) << "poses while the submap list was stuck: " << published_meanwhile
-                         << " of " << kScans;
+  EXPECT_TRUE(PosesFlowWhileHeld(&engine, &report, &publisher, "submap list"));
 }
 
 }  // namespace
