@@ -10,16 +10,28 @@ void DaemonOptions::Check(common::OptionChecker* check) const {
   check->Require(!cloud_region_channel.empty(), "cloud_region_channel", "must not be empty");
   check->Require(sensor_queue_size >= 1, "sensor_queue_size", "must be >= 1");
   check->Require(rgbd_queue_size >= 1, "rgbd_queue_size", "must be >= 1");
-  check->Require(submap_list_rate_hz > 0.0, "submap_list_rate_hz", "must be > 0");
-  check->Require(health_rate_hz > 0.0, "health_rate_hz", "must be > 0");
+  // The engine turns periods and rates into std::chrono durations (int64 ns, ~292 years): bounded
+  // so that the conversion and the deadlines after it fit; a year, or a million per second, is
+  // beyond any use.
+  constexpr double kMaxPeriod_s = 365.0 * 86400.0;
+  constexpr double kMinRate_hz = 1e-6;
+  constexpr double kMaxRate_hz = 1000.0;
+  const char* const period_range = "must be in [0, 31536000]";  // kMaxPeriod_s
+  const char* const rate_range = "must be in [1e-06, 1000]";    // kMinRate_hz, kMaxRate_hz
+  check->Require(submap_list_rate_hz >= kMinRate_hz && submap_list_rate_hz <= kMaxRate_hz,
+                 "submap_list_rate_hz", rate_range);
+  check->Require(health_rate_hz >= kMinRate_hz && health_rate_hz <= kMaxRate_hz, "health_rate_hz",
+                 rate_range);
   check->Require(max_future_s > 0.0, "max_future_s", "must be > 0");
   check->Require(max_nonfinite_range_fraction >= 0.0 && max_nonfinite_range_fraction <= 1.0,
                  "max_nonfinite_range_fraction", "must be in [0, 1]");
   check->Require(max_message_bytes >= 1024, "max_message_bytes", "must be >= 1024");
   check->Require(max_image_pixels >= 1, "max_image_pixels", "must be >= 1");
   check->Require(bad_message_log_interval_s >= 0.0, "bad_message_log_interval_s", "must be >= 0");
-  check->Require(checkpoint_period_s >= 0.0, "checkpoint_period_s", "must be >= 0");
-  check->Require(release_memory_period_s >= 0.0, "release_memory_period_s", "must be >= 0");
+  check->Require(checkpoint_period_s >= 0.0 && checkpoint_period_s <= kMaxPeriod_s,
+                 "checkpoint_period_s", period_range);
+  check->Require(release_memory_period_s >= 0.0 && release_memory_period_s <= kMaxPeriod_s,
+                 "release_memory_period_s", period_range);
   check->Require(realtime_priority >= 0 && realtime_priority <= 99, "realtime_priority",
                  "must be in [0, 99]");
   // The stamp filter's rules, under the names its fields have in daemon:.

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace fusemap {
 namespace daemon {
@@ -102,6 +104,36 @@ TEST(DaemonOptionsTest, RealtimePriorityIsOffByDefaultAndChecked) {
   EXPECT_NE(error.find("rt100.yaml:2: key 'daemon.realtime_priority': must be in [0, 99]"),
             std::string::npos)
       << error;
+}
+
+// The engine turns these into std::chrono durations (int64 ns): 1e300 s or a rate of 1e-300 Hz
+// overflowed that conversion (undefined behaviour), and a rate of 1e9 Hz made the report thread
+// spin. (Non-finite values are refused by the reader.)
+TEST(DaemonOptionsTest, PeriodsAndRatesAreBoundedSoTheirDurationsFit) {
+  io::SlamConfig slam;
+  DaemonOptions options;
+  std::string error;
+  const std::vector<std::pair<std::string, std::string>> refused = {
+      {"release_memory_period_s: 1e300",
+       "key 'daemon.release_memory_period_s': must be in [0, 31536000]"},
+      {"checkpoint_period_s: 1e300", "key 'daemon.checkpoint_period_s': must be in [0, 31536000]"},
+      {"submap_list_rate_hz: 1e-300", "key 'daemon.submap_list_rate_hz': must be in [1e-06, 1000]"},
+      {"health_rate_hz: 1e9", "key 'daemon.health_rate_hz': must be in [1e-06, 1000]"},
+  };
+  for (const auto& [line, message] : refused) {
+    EXPECT_FALSE(LoadDaemonConfig(WriteTemp("bound.yaml", "daemon:\n  " + line + "\n"), &slam,
+                                  &options, &error))
+        << line;
+    EXPECT_NE(error.find(message), std::string::npos) << line << ": " << error;
+  }
+  ASSERT_TRUE(LoadDaemonConfig(WriteTemp("edge.yaml",
+                                         "daemon:\n  release_memory_period_s: 31536000\n"
+                                         "  checkpoint_period_s: 0\n  health_rate_hz: 1e-6\n"
+                                         "  submap_list_rate_hz: 1000\n"),
+                               &slam, &options, &error))
+      << error;
+  EXPECT_EQ(options.release_memory_period_s, 31536000.0);
+  EXPECT_EQ(options.submap_list_rate_hz, 1000.0);
 }
 
 }  // namespace
