@@ -30,10 +30,14 @@ constexpr size_t kVisualPoseQueueSize = 4096;
 constexpr int kWorkerThreadNice = 5;
 constexpr int kVisualThreadNice = 10;
 
-std::chrono::steady_clock::duration Period(double rate_hz) {
+// Seconds as the engine clock's duration (int64 ns); DaemonOptions bounds every period and rate
+// so that the conversion fits.
+std::chrono::steady_clock::duration Seconds(double seconds) {
   return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-      std::chrono::duration<double>(1.0 / rate_hz));
+      std::chrono::duration<double>(seconds));
 }
+
+std::chrono::steady_clock::duration Period(double rate_hz) { return Seconds(1.0 / rate_hz); }
 
 }  // namespace
 
@@ -321,8 +325,7 @@ void Engine::RunVisual() {
   };
   // Saved on this thread, which alone owns the keyframes, on the checkpoint period.
   const bool periodic = options_.checkpoint_period_s > 0.0;
-  const auto period = std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(periodic ? options_.checkpoint_period_s : 1.0));
+  const auto period = Seconds(periodic ? options_.checkpoint_period_s : 1.0);
   auto next_save = Clock::now() + period;
   int saved_keyframes = -1;
   while (true) {
@@ -374,8 +377,7 @@ void Engine::PublishSubmapsAndLoops(double stamp_s) {
 }
 
 Engine::Clock::duration Engine::ReleasePeriod() const {
-  return std::chrono::duration_cast<Clock::duration>(
-      std::chrono::duration<double>(options_.release_memory_period_s));
+  return Seconds(options_.release_memory_period_s);
 }
 
 void Engine::MaybeReleaseMemory(Clock::time_point now, Clock::duration late) {
