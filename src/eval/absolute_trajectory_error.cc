@@ -11,6 +11,7 @@ void AteOptions::Check(common::OptionChecker* check) const {
                  "must be finite and >= 0");
   check->Require(interpolate_max_gap_s >= 0.0 && std::isfinite(interpolate_max_gap_s),
                  "interpolate_max_gap_s", "must be finite and >= 0");
+  check->Require(!scale || (align && planar), "scale", "needs a planar alignment (--se2)");
 }
 
 bool AteOptions::IsValid(std::string* error) const {
@@ -23,6 +24,7 @@ AteOptions ParseAteOptions(common::ConfigReader& reader) {
   reader.Get("align", &options.align);
   reader.Get("planar", &options.planar);
   reader.Get("interpolate_max_gap_s", &options.interpolate_max_gap_s);
+  reader.Get("scale", &options.scale);
   reader.CheckOptions(options);
   return options;
 }
@@ -39,11 +41,14 @@ std::vector<PosePair> InterpolateAtGtStamps(const Trajectory& gt, const Trajecto
   return pairs;
 }
 
-// Least-squares x, y, yaw of gt = T * est (Umeyama 1991 in two dimensions), lifted to 3D.
-common::Rigid3d AlignPlanar(const Eigen::Matrix3Xd& p_est, const Eigen::Matrix3Xd& p_gt) {
+// Least-squares x, y, yaw (and with `scale`, a uniform scale) of gt = T * est (Umeyama 1991
+// in two dimensions), lifted to 3D; the scale goes to *scale_out.
+common::Rigid3d AlignPlanar(const Eigen::Matrix3Xd& p_est, const Eigen::Matrix3Xd& p_gt, bool scale,
+                            double* scale_out) {
   const Eigen::Matrix3d T = Eigen::umeyama(Eigen::Matrix2Xd(p_est.topRows<2>()),
-                                           Eigen::Matrix2Xd(p_gt.topRows<2>()),
-                                           /*with_scaling=*/false);
+                                           Eigen::Matrix2Xd(p_gt.topRows<2>()), scale);
+  // The top-left block is scale * rotation.
+  *scale_out = scale ? Eigen::Vector2d(T(0, 0), T(1, 0)).norm() : 1.0;
   const double yaw_rad = std::atan2(T(1, 0), T(0, 0));
   return common::Rigid3d(Eigen::Vector3d(T(0, 2), T(1, 2), 0.0),
                          Eigen::Quaterniond(Eigen::AngleAxisd(yaw_rad, Eigen::Vector3d::UnitZ())));
@@ -69,7 +74,7 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
 
   // Umeyama needs at least two points to define anything; with one, alignment would zero it.
   if (options.align && options.planar && pairs.size() >= 2) {
-    result.T_gt_est = AlignPlanar(p_est, p_gt);
+    result.T_gt_est = AlignPlanar(p_est, p_gt, options.scale, &result.scale);
   } else if (options.align && pairs.size() >= 2) {
     const Eigen::Matrix4d T = Eigen::umeyama(p_est, p_gt, /*with_scaling=*/false);
     result.T_gt_est = common::Rigid3d(T.block<3, 1>(0, 3),
@@ -77,7 +82,8 @@ AteResult ComputeAte(const Trajectory& gt, const Trajectory& est, const AteOptio
   }
   std::vector<double> errors(pairs.size());
   for (size_t i = 0; i < pairs.size(); ++i) {
-    errors[i] = (p_gt.col(i) - result.T_gt_est * Eigen::Vector3d(p_est.col(i))).norm();
+    errors[i] =
+        (p_gt.col(i) - result.T_gt_est * Eigen::Vector3d(result.scale * p_est.col(i))).norm();
   }
   result.trans_m = ComputeErrorStatistics(std::move(errors));
   return result;

@@ -130,6 +130,31 @@ TEST(AteTest, PlanarAlignmentDoesNotMirrorThePlane) {
   EXPECT_NEAR(r.T_gt_est.translation().z(), 0.0, 1e-12);
 }
 
+TEST(AteTest, SimilarityAlignmentRecoversAScaleTheRigidOneLeavesAsError) {
+  // The estimate is the ground truth 1 % larger (about a point off the path), then moved in
+  // the plane: a map that came out too large.
+  const Trajectory gt = PlanarPath();
+  const common::Rigid3d T_est_gt = common::Rigid3d::FromRigid2d(common::Rigid2d(4.0, -3.0, 2.5));
+  Trajectory est = gt;
+  const Eigen::Vector3d centre(1.0, 2.0, 0.0);
+  for (TimedPose3d& p : est) {
+    p.pose = T_est_gt *
+             common::Rigid3d(centre + 1.01 * (p.pose.translation() - centre), p.pose.rotation());
+  }
+  AteOptions rigid;
+  rigid.planar = true;
+  const AteResult r_rigid = ComputeAte(gt, est, rigid);
+  EXPECT_GT(r_rigid.trans_m.rmse, 0.01);
+  EXPECT_DOUBLE_EQ(r_rigid.scale, 1.0);
+  AteOptions similarity = rigid;
+  similarity.scale = true;
+  const AteResult r = ComputeAte(gt, est, similarity);
+  EXPECT_EQ(r.trans_m.count, 200);
+  EXPECT_NEAR(r.trans_m.rmse, 0.0, 1e-9);
+  EXPECT_NEAR(r.scale, 1.0 / 1.01, 1e-12);
+  EXPECT_NEAR(r.T_gt_est.translation().z(), 0.0, 1e-12);
+}
+
 TEST(AteTest, InterpolatesAnEstimateSampledAtOtherStamps) {
   // Ground truth at 1 Hz, the estimate (a straight line at constant speed) at 10 Hz, offset by
   // 0.04 s: nearest association within 0.02 s finds nothing, interpolation is exact.
@@ -162,6 +187,14 @@ TEST(AteTest, OptionsValidation) {
   options.interpolate_max_gap_s = -0.1;
   EXPECT_FALSE(options.IsValid(&error));
   EXPECT_NE(error.find("interpolate_max_gap_s"), std::string::npos);
+  options = AteOptions();
+  options.scale = true;  // a scale only with the planar alignment
+  EXPECT_FALSE(options.IsValid(&error));
+  EXPECT_NE(error.find("scale"), std::string::npos);
+  options.planar = true;
+  EXPECT_TRUE(options.IsValid(&error)) << error;
+  options.align = false;
+  EXPECT_FALSE(options.IsValid(&error));
 }
 
 TEST(AteTest, ParseOptions) {

@@ -40,10 +40,12 @@ constexpr char kRelationsUsage[] =
     "Last line: trans_mean_m=... trans_std_m=... rot_mean_deg=... rot_std_deg=...\n";
 
 constexpr char kAteUsage[] =
-    "usage: fusemap_eval ate --gt A.tum --est B.tum [--no-align] [--se2] [--max-time-diff S]\n"
-    "                        [--interpolate S]\n"
+    "usage: fusemap_eval ate --gt A.tum --est B.tum [--no-align] [--se2 [--scale]]\n"
+    "                        [--max-time-diff S] [--interpolate S]\n"
     "  --no-align          do not rigidly align the estimate to the ground truth\n"
     "  --se2               align in the plane only (x, y, yaw; never mirrors the plane)\n"
+    "  --scale             with --se2, also fit a uniform scale (a similarity); printed as\n"
+    "                      scale= (below 1: the estimate is larger than the ground truth)\n"
     "  --max-time-diff S   association tolerance between stamps (default 0.02)\n"
     "  --interpolate S     sample the estimate at every gt stamp, interpolating between its\n"
     "                      poses (nearest within S); for estimates at other stamps (odometry)\n"
@@ -162,10 +164,12 @@ int Ate(const PairArgs& args, const eval::AteOptions& options) {
   if (!ReadPair(args, &gt, &est)) return 1;
   const eval::AteResult r = eval::ComputeAte(gt, est, options);
   std::printf("gt_poses=%zu est_poses=%zu associated=%d aligned=%s\n", gt.size(), est.size(),
-              r.trans_m.count, !options.align ? "no" : (options.planar ? "se2" : "se3"));
+              r.trans_m.count,
+              !options.align ? "no" : (options.planar ? (options.scale ? "sim2" : "se2") : "se3"));
   if (r.trans_m.count == 0) return Fail("no estimated pose within --max-time-diff of the gt");
   std::printf("T_gt_est=%s unaligned_rmse_m=%.6g\n", r.T_gt_est.DebugString().c_str(),
               r.unaligned_rmse_m);
+  if (options.scale) std::printf("scale=%.6g\n", r.scale);
   std::printf("ate_mean_m=%.6g ate_median_m=%.6g ate_max_m=%.6g\n", r.trans_m.mean,
               r.trans_m.median, r.trans_m.max);
   std::printf("ate_rmse_m=%.6g\n", r.trans_m.rmse);
@@ -179,6 +183,7 @@ int RunAte(int argc, char** argv) {
   AddPairOptions(&command_line, &args);
   command_line.AddFlag("--no-align", &options.align, false);
   command_line.AddFlag("--se2", &options.planar);
+  command_line.AddFlag("--scale", &options.scale);
   command_line.AddDouble("--max-time-diff", &options.max_time_diff_s);
   command_line.AddDouble("--interpolate", &options.interpolate_max_gap_s);
   if (const auto exit_code = command_line.ParseOrExitCode(argc, argv, 2)) return *exit_code;

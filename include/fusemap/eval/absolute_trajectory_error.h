@@ -19,6 +19,11 @@ struct AteOptions {
   // plane over (a half turn about an in-plane axis mirrors it) when that fits a poor estimate
   // better; a mirrored map is not a rigid motion of the robot's world.
   bool planar = false;
+  // With planar: also fit one uniform scale of the estimate (a similarity, Sim(2)), reported in
+  // AteResult::scale. How much larger or smaller a map is than the reference is then a number
+  // apart from the error that remains (issue 14: our maps came out 0.1-0.9 % larger than
+  // GMapping's). Requires planar.
+  bool scale = false;
   // 0: each estimated pose is associated with the nearest ground-truth stamp (both sampled at
   // the same instants, like nodes against reference poses). > 0: the estimate is sampled at
   // every ground-truth stamp by interpolation (LookUpPose with this maximum gap), for an
@@ -40,6 +45,9 @@ struct AteResult {
   ErrorStatistics trans_m;        // After alignment (equal to unaligned if align=false).
   double unaligned_rmse_m = 0.0;  // With T_gt_est = identity.
   common::Rigid3d T_gt_est;       // Applied to estimated positions before differencing.
+  // Multiplies estimated positions before T_gt_est (gt = T_gt_est * (scale * est)); 1 unless
+  // AteOptions::scale. Below 1: the estimate is larger than the ground truth.
+  double scale = 1.0;
 };
 
 // trans_m.count == 0 when no pose could be associated.
