@@ -19,10 +19,10 @@ struct AteOptions {
   // plane over (a half turn about an in-plane axis mirrors it) when that fits a poor estimate
   // better; a mirrored map is not a rigid motion of the robot's world.
   bool planar = false;
-  // With planar: also fit one uniform scale of the estimate (a similarity, Sim(2)), reported in
-  // AteResult::scale. How much larger or smaller a map is than the reference is then a number
-  // apart from the error that remains (issue 14: our maps came out 0.1-0.9 % larger than
-  // GMapping's). Requires planar.
+  // With align and planar: also fit one uniform scale of the estimate (a similarity, Sim(2)),
+  // reported in AteResult::scale. How much larger or smaller a map is than the reference is then
+  // a number apart from the error that remains (issue 14: our maps came out 0.05-0.9 % larger
+  // than GMapping's). Refused without align and planar.
   bool scale = false;
   // 0: each estimated pose is associated with the nearest ground-truth stamp (both sampled at
   // the same instants, like nodes against reference poses). > 0: the estimate is sampled at
