@@ -1,6 +1,7 @@
 #include "fusemap/pose_graph/optimization_options.h"
 
 #include <cmath>
+#include <utility>
 
 namespace fusemap {
 namespace pose_graph {
@@ -21,8 +22,9 @@ bool OptimizationOptions::IsValid(std::string* error) const {
   return common::IsValidOptions(*this, error);
 }
 
-OptimizationOptions ParseOptimizationOptions(common::ConfigReader& reader) {
-  OptimizationOptions options;
+OptimizationOptions ParseOptimizationOptions(common::ConfigReader& reader,
+                                             OptimizationOptions defaults) {
+  OptimizationOptions options = std::move(defaults);
   reader.Get("huber_scale", &options.huber_scale);
   reader.Get("max_num_iterations", &options.max_num_iterations);
   reader.Get("num_threads", &options.num_threads);

@@ -53,7 +53,8 @@ PoseGraphOptions2D ParsePoseGraphOptions2D(common::ConfigReader& reader) {
   reader.Get("optimize_every_n_nodes", &options.optimize_every_n_nodes);
   options.constraint_builder = ParseConstraintBuilderOptions2D(reader.Child("constraint_builder"));
   if (reader.Has("optimization")) {
-    options.optimization = ParseOptimizationOptions(reader.Child("optimization"));
+    options.optimization =
+        ParseOptimizationOptions(reader.Child("optimization"), options.optimization);
   }
   reader.Get("matcher_translation_weight", &options.matcher_translation_weight);
   reader.Get("matcher_rotation_weight", &options.matcher_rotation_weight);

@@ -160,6 +160,8 @@ TEST(SlamConfigTest, DefaultProfileEqualsTheBuiltInDefaults) {
     EXPECT_SAME(local_slam_rotation_weight);
     EXPECT_SAME(linked_unmeasured_weight_fraction);
     EXPECT_SAME(final_optimization_iterations);
+    EXPECT_SAME(optimization.huber_scale);
+    EXPECT_SAME(optimization.max_num_iterations);
     EXPECT_SAME(matcher_memory_budget_mb);
     EXPECT_SAME(max_pending_searches);
   }
@@ -192,6 +194,25 @@ TEST(SlamConfigTest, UnknownKeyNamesFileLineAndKeyPath) {
   EXPECT_NE(error.find("local_slam.submaps.num_range_dta"), std::string::npos) << error;
   EXPECT_NE(error.find("unknown"), std::string::npos) << error;
   EXPECT_EQ(config.channels.lidar, "UNTOUCHED");  // a failed load leaves the output alone
+}
+
+// A profile that sets one key of global_slam.optimization keeps the pose graph's own values for
+// the others (they used to fall back to a plain SE(2) graph's, Huber 0.1 among them).
+TEST(SlamConfigTest, OneOptimizationKeyKeepsThePoseGraphsOtherValues) {
+  const TempConfig empty("{}\n");
+  const SlamConfig built_in = LoadOrFail(empty.path());
+  const TempConfig file(
+      "global_slam:\n"
+      "  optimization:\n"
+      "    max_num_iterations: 7\n");
+  const SlamConfig config = LoadOrFail(file.path());
+  const pose_graph::OptimizationOptions& set = config.map_builder.global_slam.optimization;
+  const pose_graph::OptimizationOptions& defaults = built_in.map_builder.global_slam.optimization;
+  // The pose graph's Huber scale is its own, so a reset would show.
+  ASSERT_NE(defaults.huber_scale, pose_graph::OptimizationOptions().huber_scale);
+  EXPECT_EQ(set.max_num_iterations, 7);
+  EXPECT_EQ(set.huber_scale, defaults.huber_scale);
+  EXPECT_EQ(set.function_tolerance, defaults.function_tolerance);
 }
 
 TEST(SlamConfigTest, WrongTypeFails) {

@@ -28,8 +28,10 @@ struct OptimizationOptions {
   bool IsValid(std::string* error) const;
 };
 
-// Keys: huber_scale, max_num_iterations, num_threads, linear_solver, function_tolerance.
-OptimizationOptions ParseOptimizationOptions(common::ConfigReader& reader);
+// Keys: huber_scale, max_num_iterations, num_threads, linear_solver, function_tolerance. Keys
+// absent keep their value in `defaults` (the pose graph's own differ from a plain graph's).
+OptimizationOptions ParseOptimizationOptions(common::ConfigReader& reader,
+                                             OptimizationOptions defaults = {});
 
 // Costs are Ceres costs, 0.5 * sum of squared (robustified) whitened residuals; g2o's chi2 of
 // the same graph without a robust loss is 2 * cost.
