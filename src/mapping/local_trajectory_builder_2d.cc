@@ -169,7 +169,13 @@ common::Rigid2d LocalTrajectoryBuilder2D::MatchWidenedAtWindowEdge(
     if (initial_matcher_.Match(submaps.front(), predicted, cloud, &wide_score, &wide_pose)) {
       common::Rigid2d rematched;
       const double rematched_score = real_time_matcher_.Match(wide_pose, cloud, grid, &rematched);
-      if (rematched_score >= *score + options_.initial_branch_and_bound_match.min_rescore_gain) {
+      // A fit no better than what a scan scores where nothing was ever observed is no evidence
+      // against the prediction: turning in place, a sparse outdoor scan that falls mostly on
+      // free space fits a heading 26 deg off as well as the right one (freiburg-campus).
+      const bool fit_is_evidence =
+          rematched_score > options_.real_time_correlative_scan_matcher.unknown_probability;
+      if (fit_is_evidence &&
+          rematched_score >= *score + options_.initial_branch_and_bound_match.min_rescore_gain) {
         ++stats_.wide_matches_taken;
         *score = rematched_score;
         initial = rematched;

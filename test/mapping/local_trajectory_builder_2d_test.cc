@@ -271,6 +271,28 @@ TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeLeavesSmoothPathAlone) 
   EXPECT_EQ(widened.stats().wide_matches_taken, 0);
 }
 
+// A wide answer that fits no better than never-observed space is not taken: with the real-time
+// matcher reading such space as 0.9 (above any mean a scan here reaches), the wide search runs
+// at the window's edge but every pose is the one without it.
+TEST(LocalTrajectoryBuilder2DTest, WideAnswerFittingNoBetterThanUnknownSpaceIsNotTaken) {
+  LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
+  options.initial_branch_and_bound_match.only_at_window_edge = true;
+  options.real_time_correlative_scan_matcher.unknown_probability = kMaxProbability;
+  LocalTrajectoryBuilder2D widened(options);
+  options.initial_branch_and_bound_match.enabled = false;
+  LocalTrajectoryBuilder2D plain(options);
+  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
+  TrackJumpyPath(&widened, 10, &widened_estimates);
+  TrackJumpyPath(&plain, 10, &plain_estimates);
+  EXPECT_GT(widened.stats().window_edge_matches, 0);
+  EXPECT_EQ(widened.stats().wide_matches_taken, 0);
+  ASSERT_EQ(widened_estimates.size(), plain_estimates.size());
+  for (size_t i = 0; i < plain_estimates.size(); ++i) {
+    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
+    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
+  }
+}
+
 // With Ceres alone (no real-time window, as in sim.yaml) only_at_window_edge never searches
 // wide: the poses are those without the stage, not those of a search on every scan.
 TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeNeedsTheRealTimeMatcher) {
