@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -271,6 +272,24 @@ TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeLeavesSmoothPathAlone) 
   EXPECT_EQ(widened.stats().wide_matches_taken, 0);
 }
 
+// Tracks `num_scans` of the jumpy path with `options` and again with the wide search disabled,
+// expects the same poses bit for bit, and returns the first run's counters.
+LocalTrajectoryBuilder2D::Stats ExpectPosesAsWithoutWideSearch(
+    LocalTrajectoryBuilderOptions2D options, int num_scans) {
+  LocalTrajectoryBuilder2D widened(options);
+  options.initial_branch_and_bound_match.enabled = false;
+  LocalTrajectoryBuilder2D plain(options);
+  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
+  TrackJumpyPath(&widened, num_scans, &widened_estimates);
+  TrackJumpyPath(&plain, num_scans, &plain_estimates);
+  EXPECT_EQ(widened_estimates.size(), plain_estimates.size());
+  for (size_t i = 0; i < std::min(widened_estimates.size(), plain_estimates.size()); ++i) {
+    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
+    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
+  }
+  return widened.stats();
+}
+
 // A wide answer that fits no better than never-observed space is not taken: with the real-time
 // matcher reading such space as 0.9 (above any mean a scan here reaches), the wide search runs
 // at the window's edge but every pose is the one without it.
@@ -278,19 +297,9 @@ TEST(LocalTrajectoryBuilder2DTest, WideAnswerFittingNoBetterThanUnknownSpaceIsNo
   LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
   options.initial_branch_and_bound_match.only_at_window_edge = true;
   options.real_time_correlative_scan_matcher.unknown_probability = kMaxProbability;
-  LocalTrajectoryBuilder2D widened(options);
-  options.initial_branch_and_bound_match.enabled = false;
-  LocalTrajectoryBuilder2D plain(options);
-  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
-  TrackJumpyPath(&widened, 10, &widened_estimates);
-  TrackJumpyPath(&plain, 10, &plain_estimates);
-  EXPECT_GT(widened.stats().window_edge_matches, 0);
-  EXPECT_EQ(widened.stats().wide_matches_taken, 0);
-  ASSERT_EQ(widened_estimates.size(), plain_estimates.size());
-  for (size_t i = 0; i < plain_estimates.size(); ++i) {
-    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
-    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
-  }
+  const LocalTrajectoryBuilder2D::Stats stats = ExpectPosesAsWithoutWideSearch(options, 10);
+  EXPECT_GT(stats.window_edge_matches, 0);
+  EXPECT_EQ(stats.wide_matches_taken, 0);
 }
 
 // With Ceres alone (no real-time window, as in sim.yaml) only_at_window_edge never searches
@@ -299,18 +308,7 @@ TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeNeedsTheRealTimeMatcher
   LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
   options.use_online_correlative_scan_matching = false;
   options.initial_branch_and_bound_match.only_at_window_edge = true;
-  LocalTrajectoryBuilder2D widened(options);
-  options.initial_branch_and_bound_match.enabled = false;
-  LocalTrajectoryBuilder2D plain(options);
-  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
-  TrackJumpyPath(&widened, 6, &widened_estimates);
-  TrackJumpyPath(&plain, 6, &plain_estimates);
-  ASSERT_EQ(widened_estimates.size(), plain_estimates.size());
-  for (size_t i = 0; i < plain_estimates.size(); ++i) {
-    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
-    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
-  }
-  EXPECT_EQ(widened.stats().window_edge_matches, 0);
+  EXPECT_EQ(ExpectPosesAsWithoutWideSearch(options, 6).window_edge_matches, 0);
 }
 
 // Issue 18, item 3: one odometry message at x = 1e300 early in a run hung local SLAM in the
