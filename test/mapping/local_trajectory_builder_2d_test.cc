@@ -209,26 +209,33 @@ TEST(LocalTrajectoryBuilder2DTest, InitialBranchAndBoundMatchTracksLargeJumpsWit
   EXPECT_EQ(without.stats().initial_match_rejected, 0);
 }
 
+// Tracks `num_scans` of the jumpy path with `options` and again with the wide search disabled,
+// expects the same poses bit for bit, and returns the first run's counters.
+LocalTrajectoryBuilder2D::Stats ExpectPosesAsWithoutWideSearch(
+    LocalTrajectoryBuilderOptions2D options, int num_scans) {
+  LocalTrajectoryBuilder2D widened(options);
+  options.initial_branch_and_bound_match.enabled = false;
+  LocalTrajectoryBuilder2D plain(options);
+  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
+  TrackJumpyPath(&widened, num_scans, &widened_estimates);
+  TrackJumpyPath(&plain, num_scans, &plain_estimates);
+  EXPECT_EQ(widened_estimates.size(), plain_estimates.size());
+  for (size_t i = 0; i < std::min(widened_estimates.size(), plain_estimates.size()); ++i) {
+    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
+    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
+  }
+  return widened.stats();
+}
+
 TEST(LocalTrajectoryBuilder2DTest, InitialMatchBelowMinScoreKeepsPredictionAndCounts) {
   constexpr int kNumScans = 6;
   LocalTrajectoryBuilderOptions2D options = NoOdometryOptions(true);
   // No candidate's mean probability exceeds 1.
   options.initial_branch_and_bound_match.fast_correlative_scan_matcher.min_score = 1.0;
-  LocalTrajectoryBuilder2D rejecting(options);
-  std::vector<common::Rigid2d> rejecting_estimates;
-  TrackJumpyPath(&rejecting, kNumScans, &rejecting_estimates);
-  // Every scan but the first (which has no submap to match against) is counted.
-  EXPECT_EQ(rejecting.stats().initial_match_rejected, kNumScans - 1);
-
   // Rejected everywhere, the stage leaves the poses bit for bit as if it were disabled.
-  LocalTrajectoryBuilder2D disabled(NoOdometryOptions(false));
-  std::vector<common::Rigid2d> disabled_estimates;
-  TrackJumpyPath(&disabled, kNumScans, &disabled_estimates);
-  ASSERT_EQ(rejecting_estimates.size(), disabled_estimates.size());
-  for (size_t i = 0; i < disabled_estimates.size(); ++i) {
-    EXPECT_EQ(rejecting_estimates[i].translation(), disabled_estimates[i].translation()) << i;
-    EXPECT_EQ(rejecting_estimates[i].angle_rad(), disabled_estimates[i].angle_rad()) << i;
-  }
+  const LocalTrajectoryBuilder2D::Stats stats = ExpectPosesAsWithoutWideSearch(options, kNumScans);
+  // Every scan but the first (which has no submap to match against) is counted.
+  EXPECT_EQ(stats.initial_match_rejected, kNumScans - 1);
 }
 
 // only_at_window_edge: the wide search runs only where the small window's answer is on its
@@ -270,24 +277,6 @@ TEST(LocalTrajectoryBuilder2DTest, WideSearchAtWindowEdgeLeavesSmoothPathAlone) 
     EXPECT_EQ(a->T_local_tracking.angle_rad(), b->T_local_tracking.angle_rad()) << i;
   }
   EXPECT_EQ(widened.stats().wide_matches_taken, 0);
-}
-
-// Tracks `num_scans` of the jumpy path with `options` and again with the wide search disabled,
-// expects the same poses bit for bit, and returns the first run's counters.
-LocalTrajectoryBuilder2D::Stats ExpectPosesAsWithoutWideSearch(
-    LocalTrajectoryBuilderOptions2D options, int num_scans) {
-  LocalTrajectoryBuilder2D widened(options);
-  options.initial_branch_and_bound_match.enabled = false;
-  LocalTrajectoryBuilder2D plain(options);
-  std::vector<common::Rigid2d> widened_estimates, plain_estimates;
-  TrackJumpyPath(&widened, num_scans, &widened_estimates);
-  TrackJumpyPath(&plain, num_scans, &plain_estimates);
-  EXPECT_EQ(widened_estimates.size(), plain_estimates.size());
-  for (size_t i = 0; i < std::min(widened_estimates.size(), plain_estimates.size()); ++i) {
-    EXPECT_EQ(widened_estimates[i].translation(), plain_estimates[i].translation()) << i;
-    EXPECT_EQ(widened_estimates[i].angle_rad(), plain_estimates[i].angle_rad()) << i;
-  }
-  return widened.stats();
 }
 
 // A wide answer that fits no better than never-observed space is not taken: with the real-time
