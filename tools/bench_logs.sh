@@ -1,6 +1,6 @@
 #!/bin/bash
 # Laser SLAM benchmark over a folder of CARMEN logs (issue 14). Run from anywhere:
-#   tools/bench_logs.sh DIR PROFILE OUT
+#   tools/bench_logs.sh [--start-at-scan N] DIR PROFILE OUT
 # For every DIR/*.gfs.log and DIR/*.gfs.log.gz: import with fusemap_carmen2lcm (GMapping's
 # poses as reference.tum; a stamp map too when DIR/<log>.relations exists), map with
 # fusemap_offline --threads 2, score nodes.tum and the input odometry (odometry.tum, sampled at
@@ -10,6 +10,11 @@
 # else its default.yaml, else its carmen.yaml. Prints the table as Markdown on stdout and
 # writes OUT/table.md and OUT/table.tsv; progress on stderr. Exit 1 if any log failed (its row
 # says where), 2 on bad usage. Binaries from $FUSEMAP_BUILD (default: build/ of this checkout).
+# --start-at-scan N: map each log from its N-th FLASER scan (from 0) on, as if the robot had
+# been switched on there: the earlier scans keep their lines with every range blanked (0), so
+# the importer still undoes the odometry's rebasing at them, and local SLAM skips them as
+# having too few returns; their reference poses are left out of the scores.
+# The same buildings from other starts, to tell a mechanism from the luck of one start.
 set -u
 export LC_ALL=C  # decimal points in the figures and the table
 usage() {
@@ -24,6 +29,15 @@ usage() {
 if [ $# -ge 1 ] && { [ "$1" = "--help" ] || [ "$1" = "-h" ]; }; then
   usage
   exit 0
+fi
+START_AT_SCAN=0
+if [ $# -ge 1 ] && [ "$1" = "--start-at-scan" ]; then
+  if [ $# -lt 2 ] || ! [[ $2 =~ ^[0-9]+$ ]]; then
+    echo "bench_logs: --start-at-scan needs a scan count (0, 1, ...)" >&2
+    exit 2
+  fi
+  START_AT_SCAN=$2
+  shift 2
 fi
 if [ $# -ne 3 ]; then
   usage >&2
@@ -126,8 +140,26 @@ for log in "${LOGS[@]}"; do
     import_args+=(--stamp-map "$work/stamps.txt")
     score_relations=1
   fi
-  if ! "$CARMEN2LCM" "$log" "$work/log.lcm" "${import_args[@]}" >"$work/import.txt" \
-    2>"$work/import.err"; then
+  input=$log
+  if [ "$START_AT_SCAN" -gt 0 ]; then
+    input=$work/started_at_scan_$START_AT_SCAN.gfs.log
+    { if [[ $log == *.gz ]]; then zcat -- "$log"; else cat -- "$log"; fi; } |
+      awk -v first="$START_AT_SCAN" '
+        $1 == "FLASER" && n++ < first { for (i = 3; i < 3 + $2; ++i) $i = 0 }
+        { print }' >"$input"
+  fi
+  "$CARMEN2LCM" "$input" "$work/log.lcm" "${import_args[@]}" >"$work/import.txt" \
+    2>"$work/import.err"
+  imported=$?
+  if [ "$input" != "$log" ]; then
+    rm -f -- "$input"
+    # The blanked scans' reference poses out too: odometry is scored over the same scans.
+    if [ $imported -eq 0 ]; then
+      awk -v first="$START_AT_SCAN" '/^#/ || n++ >= first' "$work/reference.tum" \
+        >"$work/reference.tum.tmp" && mv -- "$work/reference.tum.tmp" "$work/reference.tum"
+    fi
+  fi
+  if [ $imported -ne 0 ]; then
     status="FAILED: import (see $work/import.err)"
   else
     row[scans]=$(kv "$work/import.txt" scans)
@@ -237,6 +269,8 @@ fi
     for cell in "${cells[@]}"; do line+=" $cell |"; done
     printf '%s\n' "$line"
   done
+  [ "$START_AT_SCAN" -eq 0 ] ||
+    printf '\nEach log mapped from its scan %s on (--start-at-scan).\n' "$START_AT_SCAN"
   printf '\nProfile %s, %s; load average (1, 5, 15 min) %s at the start, %s at the end, %s cores.\n' \
     "$2" "$(date -u '+%Y-%m-%d %H:%M UTC')" "$load_start" "$(load)" "$(nproc)"
 } >"$OUT/table.md"

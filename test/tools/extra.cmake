@@ -15,3 +15,12 @@ endif()
 add_test(NAME tools_exit_codes
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/exit_codes.sh ${tools_exit_code_args})
 set_tests_properties(tools_exit_codes PROPERTIES TIMEOUT 120)
+
+# tools/bench_logs.sh --start-at-scan (README "Benchmarks"): needs every binary the script runs.
+if(TARGET fusemap_carmen2lcm AND TARGET fusemap_offline AND TARGET fusemap_eval_tool
+   AND TARGET fusemap_bench_images)
+  add_test(NAME tools_bench_logs_start_at_scan
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/bench_logs_start_test.sh
+                   ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  set_tests_properties(tools_bench_logs_start_at_scan PROPERTIES TIMEOUT 120)
+endif()

@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# tools/bench_logs.sh --start-at-scan N on a small synthetic CARMEN log (a robot creeping down a
+# corridor towards its end wall): the first N scans are blanked, not dropped (local SLAM skips
+# them as too few returns; every odometry record stays), their reference poses leave the
+# scores, and the table says where the logs were started. Without the option, nothing is
+# blanked. Usage: bench_logs_start_test.sh SOURCE_DIR BUILD_DIR
+set -u
+src=$1
+export FUSEMAP_BUILD=$2
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+failures=0
+fail() {
+  echo "FAIL: $*"
+  failures=$((failures + 1))
+}
+
+mkdir -p "$work/logs"
+# 40 scans 5 cm apart, 181 beams: side walls 2 m away, the end wall 4 m ahead at the start.
+awk 'BEGIN {
+  for (k = 0; k < 40; ++k) {
+    t = 1 + k * 0.2; x = k * 0.05
+    printf "ODOM %.3f 0 0 0.25 0 0 %.3f host %.3f\n", x, t - 0.1, t - 0.1
+    line = "FLASER 181"
+    for (i = 0; i < 181; ++i) {
+      a = (i - 90) * 3.14159265 / 180; s = sin(a) < 0 ? -sin(a) : sin(a)
+      r = (a > 0.5 || a < -0.5) ? 2.0 / s : 4.0 - x
+      line = line sprintf(" %.3f", r > 8 ? 8 : r)
+    }
+    printf "%s %.3f 0 0 %.3f 0 0 %.3f host %.3f\n", line, x, x, t, t
+  }
+}' >"$work/logs/corridor.gfs.log"
+
+bench="$src/tools/bench_logs.sh"
+profile="$src/config/default.yaml"
+bash "$bench" --start-at-scan 10 "$work/logs" "$profile" "$work/started" >"$work/started.md" \
+  2>"$work/started.err" || fail "--start-at-scan 10 exited $? ($(tail -1 "$work/started.err"))"
+grep -q "too_few_returns=10 " "$work/started/corridor/offline.txt" ||
+  fail "--start-at-scan 10: local SLAM did not skip exactly 10 scans"
+grep -q "^scans=40 .*odometry=40 " "$work/started/corridor/import.txt" ||
+  fail "--start-at-scan 10: the import lost scans or odometry records"
+poses=$(grep -vc '^#' "$work/started/corridor/reference.tum")
+[ "$poses" = 30 ] || fail "--start-at-scan 10: $poses reference poses scored, expected 30"
+grep -q "from its scan 10 on" "$work/started.md" || fail "the table does not say where logs start"
+ls "$work/started/corridor/"*.gfs.log >/dev/null 2>&1 && fail "the blanked copy was left behind"
+
+bash "$bench" "$work/logs" "$profile" "$work/whole" >/dev/null 2>"$work/whole.err" ||
+  fail "without --start-at-scan exited $?"
+grep -q "too_few_returns=0 " "$work/whole/corridor/offline.txt" ||
+  fail "without --start-at-scan: scans were skipped"
+poses=$(grep -vc '^#' "$work/whole/corridor/reference.tum")
+[ "$poses" = 40 ] || fail "without --start-at-scan: $poses reference poses, expected 40"
+
+for bad in "--start-at-scan" "--start-at-scan x" "--start-at-scan -1"; do
+  # shellcheck disable=SC2086  # the words are the arguments
+  bash "$bench" $bad "$work/logs" "$profile" "$work/bad" >/dev/null 2>&1
+  code=$?
+  [ $code = 2 ] || fail "'$bad' exited $code, expected 2"
+done
+
+[ $failures = 0 ] && echo "bench_logs --start-at-scan: all checks passed"
+exit $((failures > 0))
