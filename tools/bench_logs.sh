@@ -13,7 +13,8 @@
 # --start-at-scan N: map each log from its N-th FLASER scan (from 0) on, as if the robot had
 # been switched on there: the earlier scans keep their lines with every range blanked (0), so
 # the importer still undoes the odometry's rebasing at them, and local SLAM skips them as
-# having too few returns; their reference poses are left out of the scores.
+# having too few returns; their reference poses are left out of the scores (and relations are
+# not scored).
 # The same buildings from other starts, to tell a mechanism from the luck of one start.
 set -u
 export LC_ALL=C  # decimal points in the figures and the table
@@ -136,7 +137,8 @@ for log in "${LOGS[@]}"; do
   [ -f "$DIR/$name.relations_offset" ] && offset=$(<"$DIR/$name.relations_offset")
   import_args=(--reference-poses "$work/reference.tum")
   score_relations=0
-  if [ -f "$relations" ] && [ -n "$offset" ]; then
+  # Relations span the whole log, blanked part included: not scored from another start.
+  if [ -f "$relations" ] && [ -n "$offset" ] && [ "$START_AT_SCAN" -eq 0 ]; then
     import_args+=(--stamp-map "$work/stamps.txt")
     score_relations=1
   fi
