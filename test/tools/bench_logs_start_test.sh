@@ -16,20 +16,9 @@ fail() {
 }
 
 mkdir -p "$work/logs"
-# 40 scans 5 cm apart, 181 beams: side walls 2 m away, the end wall 4 m ahead at the start.
-awk 'BEGIN {
-  for (k = 0; k < 40; ++k) {
-    t = 1 + k * 0.2; x = k * 0.05
-    printf "ODOM %.3f 0 0 0.25 0 0 %.3f host %.3f\n", x, t - 0.1, t - 0.1
-    line = "FLASER 181"
-    for (i = 0; i < 181; ++i) {
-      a = (i - 90) * 3.14159265 / 180; s = sin(a) < 0 ? -sin(a) : sin(a)
-      r = (a > 0.5 || a < -0.5) ? 2.0 / s : 4.0 - x
-      line = line sprintf(" %.3f", r > 8 ? 8 : r)
-    }
-    printf "%s %.3f 0 0 %.3f 0 0 %.3f host %.3f\n", line, x, x, t, t
-  }
-}' >"$work/logs/corridor.gfs.log"
+# shellcheck source=corridor_log.sh
+source "$(dirname "$0")/corridor_log.sh"
+write_corridor_log "$work/logs/corridor.gfs.log"
 
 bench="$src/tools/bench_logs.sh"
 profile="$src/config/default.yaml"

@@ -24,3 +24,12 @@ if(TARGET fusemap_carmen2lcm AND TARGET fusemap_offline AND TARGET fusemap_eval_
                    ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
   set_tests_properties(tools_bench_logs_start_at_scan PROPERTIES TIMEOUT 120)
 endif()
+
+# tools/bench_starts.sh (README "Benchmarks"): runs bench_logs.sh, so it needs the same binaries.
+if(TARGET fusemap_carmen2lcm AND TARGET fusemap_offline AND TARGET fusemap_eval_tool
+   AND TARGET fusemap_bench_images)
+  add_test(NAME tools_bench_starts
+           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/bench_starts_test.sh
+                   ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+  set_tests_properties(tools_bench_starts PROPERTIES TIMEOUT 120)
+endif()
