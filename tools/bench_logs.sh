@@ -18,15 +18,9 @@
 # The same buildings from other starts, to tell a mechanism from the luck of one start.
 set -u
 export LC_ALL=C  # decimal points in the figures and the table
-usage() {
-  local line
-  while IFS= read -r line; do
-    [[ $line == "#!"* ]] && continue
-    [[ $line == "#"* ]] || break
-    line=${line#\#}
-    printf '%s\n' "${line# }"
-  done <"$0"
-}
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
+usage() { help_from_header "$0"; }
 if [ $# -ge 1 ] && { [ "$1" = "--help" ] || [ "$1" = "-h" ]; }; then
   usage
   exit 0

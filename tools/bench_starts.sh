@@ -11,15 +11,9 @@
 # ($FUSEMAP_BUILD, default build/ of this checkout).
 set -u
 export LC_ALL=C
-usage() {
-  local line
-  while IFS= read -r line; do
-    [[ $line == "#!"* ]] && continue
-    [[ $line == "#"* ]] || break
-    line=${line#\#}
-    printf '%s\n' "${line# }"
-  done <"$0"
-}
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
+usage() { help_from_header "$0"; }
 STARTS="0 50 100 150 200"
 MAX_RMSE_M=0.5
 while [ $# -ge 1 ]; do

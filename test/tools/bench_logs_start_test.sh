@@ -4,21 +4,8 @@
 # them as too few returns; every odometry record stays), their reference poses leave the
 # scores, and the table says where the logs were started. Without the option, nothing is
 # blanked. Usage: bench_logs_start_test.sh SOURCE_DIR BUILD_DIR
-set -u
-src=$1
-export FUSEMAP_BUILD=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
-
-mkdir -p "$work/logs"
-# shellcheck source=corridor_log.sh
-source "$(dirname "$0")/corridor_log.sh"
-write_corridor_log "$work/logs/corridor.gfs.log"
+# shellcheck source=bench_test_lib.sh
+source "$(dirname "$0")/bench_test_lib.sh" "$@"
 
 bench="$src/tools/bench_logs.sh"
 profile="$src/config/default.yaml"

@@ -1,22 +1,9 @@
 #!/usr/bin/env bash
-# tools/bench_starts.sh on a small synthetic CARMEN log (corridor_log.sh): one benchmark per
+# tools/bench_starts.sh on a small synthetic CARMEN log (bench_test_lib.sh): one benchmark per
 # start, one row per log with a SLAM RMSE per start, the count of runs above --max-rmse-m, and
 # exit 2 on bad options. Usage: bench_starts_test.sh SOURCE_DIR BUILD_DIR
-set -u
-src=$1
-export FUSEMAP_BUILD=$2
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-failures=0
-fail() {
-  echo "FAIL: $*"
-  failures=$((failures + 1))
-}
-
-mkdir -p "$work/logs"
-# shellcheck source=corridor_log.sh
-source "$(dirname "$0")/corridor_log.sh"
-write_corridor_log "$work/logs/corridor.gfs.log"
+# shellcheck source=bench_test_lib.sh
+source "$(dirname "$0")/bench_test_lib.sh" "$@"
 
 starts="$src/tools/bench_starts.sh"
 profile="$src/config/default.yaml"

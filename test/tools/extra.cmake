@@ -16,20 +16,17 @@ add_test(NAME tools_exit_codes
          COMMAND ${CMAKE_CURRENT_SOURCE_DIR}/tools/exit_codes.sh ${tools_exit_code_args})
 set_tests_properties(tools_exit_codes PROPERTIES TIMEOUT 120)
 
-# tools/bench_logs.sh --start-at-scan (README "Benchmarks"): needs every binary the script runs.
+# tools/bench_logs.sh --start-at-scan and tools/bench_starts.sh (README "Benchmarks"): need
+# every binary bench_logs.sh runs.
 if(TARGET fusemap_carmen2lcm AND TARGET fusemap_offline AND TARGET fusemap_eval_tool
    AND TARGET fusemap_bench_images)
-  add_test(NAME tools_bench_logs_start_at_scan
-           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/bench_logs_start_test.sh
-                   ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-  set_tests_properties(tools_bench_logs_start_at_scan PROPERTIES TIMEOUT 120)
-endif()
-
-# tools/bench_starts.sh (README "Benchmarks"): runs bench_logs.sh, so it needs the same binaries.
-if(TARGET fusemap_carmen2lcm AND TARGET fusemap_offline AND TARGET fusemap_eval_tool
-   AND TARGET fusemap_bench_images)
-  add_test(NAME tools_bench_starts
-           COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/bench_starts_test.sh
-                   ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-  set_tests_properties(tools_bench_starts PROPERTIES TIMEOUT 120)
+  foreach(test_name_and_script "tools_bench_logs_start_at_scan;bench_logs_start_test.sh"
+                               "tools_bench_starts;bench_starts_test.sh")
+    list(GET test_name_and_script 0 test_name)
+    list(GET test_name_and_script 1 script)
+    add_test(NAME ${test_name}
+             COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/tools/${script}
+                     ${PROJECT_SOURCE_DIR} ${CMAKE_BINARY_DIR})
+    set_tests_properties(${test_name} PROPERTIES TIMEOUT 120)
+  endforeach()
 endif()
