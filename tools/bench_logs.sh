@@ -147,7 +147,7 @@ for log in "${LOGS[@]}"; do
   "$CARMEN2LCM" "$input" "$work/log.lcm" "${import_args[@]}" >"$work/import.txt" \
     2>"$work/import.err"
   imported=$?
-  if [ "$input" != "$log" ]; then
+  if [ "$START_AT_SCAN" -gt 0 ]; then
     rm -f -- "$input"
     # The blanked scans' reference poses out too: odometry is scored over the same scans.
     if [ $imported -eq 0 ]; then

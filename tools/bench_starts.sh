@@ -56,7 +56,7 @@ for s in $STARTS; do
 done
 
 # One row per log, one column per start: the slam_rmse_m column of each start's table.tsv.
-awk -F'\t' -v starts="$STARTS" -v out="$OUT" -v max_rmse="$MAX_RMSE_M" '
+awk -v starts="$STARTS" -v out="$OUT" -v max_rmse="$MAX_RMSE_M" '
   BEGIN {
     num_starts = split(starts, s, " ")
     for (i = 1; i <= num_starts; ++i) {
@@ -92,6 +92,6 @@ awk -F'\t' -v starts="$STARTS" -v out="$OUT" -v max_rmse="$MAX_RMSE_M" '
     }
     printf "\nSLAM RMSE m against GMapping'"'"'s poses; %d of %d runs above %s m.\n", above, runs,
            max_rmse > out "/starts.md"
-  }' </dev/null
+  }'
 cat "$OUT/starts.md"
 exit $status
