@@ -10,8 +10,10 @@
 #    re-bases them, daemon.time_reset_threshold_s), replayed with file://...?speed=0 (as fast
 #    as possible). Reports resident memory and graph size every 5 minutes of simulated time.
 set -u
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
 if [ $# -lt 1 ] || [ "$1" = "--help" ]; then
-  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+  help_from_header "$0"
   exit 2
 fi
 BUILD=$(realpath "$1") RT_S=${2:-60} LONG_S=${3:-3600} THREADS=${4:-1}

@@ -11,8 +11,10 @@
 #        (defaults build, out/bench_vloop_daemon, 2, 2); FUSEMAP_BENCH_WORLDS ("corridor rooms ring ring_rooms").
 # Exit codes: 0 all runs done, 1 a run failed (its stderr is in OUT_DIR), 2 usage or missing build.
 set -euo pipefail
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
 if [[ ${1:-} == --help || ${1:-} == -h ]]; then
-  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+  help_from_header "$0"
   exit 0
 fi
 cd "$(dirname "$0")/.."

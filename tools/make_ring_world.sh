@@ -11,11 +11,13 @@
 # Usage: tools/make_ring_world.sh [--rooms] > data/worlds/ring.yaml (ring_rooms.yaml)
 # Exit codes: 0 written, 2 usage.
 set -euo pipefail
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
 rooms=0
 if [[ $# -eq 1 && $1 == --rooms ]]; then
   rooms=1
 elif [[ $# -gt 0 ]]; then
-  sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'
+  help_from_header "$0"
   [[ $1 == --help || $1 == -h ]] && exit 0
   exit 2
 fi

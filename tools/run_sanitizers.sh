@@ -17,12 +17,14 @@
 # The run fails if any report was written or any step failed. Exit codes: 0 clean, 1 a step
 # failed or a sanitizer reported, 2 usage error.
 set -euo pipefail
+# shellcheck source=help_lib.sh
+source "$(dirname "$0")/help_lib.sh"
 cd "$(dirname "$0")/.."
 mode=${1:-asan}
 case "$mode" in
   asan) build_dir=build-asan sanitize=address,undefined ;;
   tsan) build_dir=build-tsan sanitize=thread ;;
-  --help | -h) sed -n '2,18p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+  --help | -h) help_from_header "$0"; exit 0 ;;
   *) echo "usage: bash tools/run_sanitizers.sh [asan|tsan]" >&2; exit 2 ;;
 esac
 launcher=()
