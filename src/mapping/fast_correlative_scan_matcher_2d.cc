@@ -5,10 +5,17 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
+#include <iterator>
 #include <utility>
 
 namespace fusemap {
 namespace mapping {
+namespace {
+
+// No upper limit on the fit of the leaves a search looks for.
+constexpr double kNoMaxFit = 2.0;  // above any score
+
+}  // namespace
 
 void FastCorrelativeScanMatcherOptions2D::Check(common::OptionChecker* check) const {
   check->Require(linear_search_window_m >= 0.0, "linear_search_window_m", "must be >= 0");
@@ -132,20 +139,42 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 
   const std::vector<Candidate2D> lowest_resolution_candidates =
       ComputeLowestResolutionCandidates(scans, params, with_prior);
-  // With a prior, the threshold is on the match itself: the prior only chooses among matches,
-  // so a good match far from the centre is not rejected for being far.
+  // The lowest-resolution candidates `keep` accepts, in the same order (best first).
+  const auto kept_where = [&lowest_resolution_candidates](const auto& keep) {
+    std::vector<Candidate2D> kept;
+    std::copy_if(lowest_resolution_candidates.begin(), lowest_resolution_candidates.end(),
+                 std::back_inserter(kept), keep);
+    return kept;
+  };
   std::vector<std::vector<Candidate2D>> children_by_depth(grids_.max_depth());
-  Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(),
-                                    with_prior ? 0.0 : min_score, with_prior, &children_by_depth);
-  if (with_prior) {
-    const int i = best.scan_index;
-    const long sum =
-        grids_.Get(0).SumValues(scans.scans[i], scans.min_cells[i], scans.max_cells[i],
-                                Eigen::Array2i(best.x_offset_cells, best.y_offset_cells));
-    SetScore(grids_.Get(0), sum, static_cast<int>(scans.scans[i].size()), false, &best);
+  Candidate2D best(0, 0, 0, params);
+  if (!with_prior) {
+    best = BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(),
+                          min_score, min_score, kNoMaxFit, with_prior, &children_by_depth);
+  } else {
+    // With a prior, the threshold is on the match itself: the prior only chooses among
+    // matches, so a good match far from the centre is not rejected for being far. The answer
+    // is the candidate the prior ranks first, and none if its own score does not beat
+    // min_score. That is searched in two steps, each pruning more than one search for the
+    // first-ranked candidate could: the first-ranked among those that beat min_score (subtrees
+    // whose scores cannot are skipped, however well the prior ranks them); then, only if there
+    // is one, whether any candidate that does not beat min_score is ranked above it (then that
+    // one would be the answer; none that does can be). Most of local SLAM's wide searches end after the first step
+    // with nothing found, their caller having asked for a score that would change its answer.
+    best = BranchAndBound(
+        scans, params, kept_where([min_score](const Candidate2D& c) { return c.fit > min_score; }),
+        grids_.max_depth(), 0.0, min_score, kNoMaxFit, with_prior, &children_by_depth);
+    if (best.fit > min_score) {
+      const double best_score = best.score;
+      const Candidate2D ranked_above = BranchAndBound(
+          scans, params,
+          kept_where([best_score](const Candidate2D& c) { return c.score > best_score; }),
+          grids_.max_depth(), best_score, -1.0, min_score, with_prior, &children_by_depth);
+      if (ranked_above.score > best_score) return false;
+    }
   }
-  if (!(best.score > min_score)) return false;
-  *score = best.score;
+  if (!(best.fit > min_score)) return false;
+  *score = best.fit;
   *pose = common::Rigid2d(initial_pose.translation() + Eigen::Vector2d(best.x_m, best.y_m),
                           initial_pose.angle_rad() + best.angle_rad);
   return true;
@@ -200,6 +229,7 @@ void FastCorrelativeScanMatcher2D::SetScore(const PrecomputationGrid2D& grid, lo
                                             int num_points, bool with_prior,
                                             Candidate2D* candidate) const {
   candidate->score = PrecomputationScore(value_sum, num_points);
+  candidate->fit = candidate->score;
   if (!with_prior) return;
   // Offset of the cell in [start, start + width) nearest to 0.
   const auto nearest_cells = [](int start, int width) {
@@ -225,14 +255,30 @@ void FastCorrelativeScanMatcher2D::SetScore(const PrecomputationGrid2D& grid, lo
 // (eq. 14), so a subtree whose bound does not beat the best leaf found so far is skipped.
 Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     const ScanSet& scans, const SearchParameters& params,
-    const std::vector<Candidate2D>& candidates, int depth, double min_score, bool with_prior,
+    const std::vector<Candidate2D>& candidates, int depth, double min_score, double min_fit,
+    double max_fit, bool with_prior,
     std::vector<std::vector<Candidate2D>>* children_by_depth) const {
-  if (depth == 0) return candidates.front();  // sorted best first, never empty
-  Candidate2D best(0, 0, 0, params);
+  Candidate2D none(0, 0, 0, params);
+  none.score = -1.0;
+  none.fit = -1.0;
+  if (depth == 0) {
+    // Sorted best first: the first whose fit is in range (without a prior, fit is score).
+    for (const Candidate2D& candidate : candidates) {
+      if (candidate.fit > min_fit && candidate.fit <= max_fit) return candidate;
+    }
+    return none;
+  }
+  Candidate2D best = none;
   best.score = min_score;
   const int half_width = 1 << (depth - 1);
   for (const Candidate2D& candidate : candidates) {
     if (candidate.score <= best.score) break;
+    // A candidate's fit bounds its leaves' as its score does theirs.
+    if (candidate.fit <= min_fit) continue;
+    // Leaves that fit at most max_fit score at most that times the prior's factor.
+    if (candidate.fit > max_fit && candidate.score * (max_fit / candidate.fit) <= best.score) {
+      continue;
+    }
     const SearchParameters::LinearBounds& bounds = params.linear_bounds[candidate.scan_index];
     // Reused storage: thousands of candidates are expanded per search.
     std::vector<Candidate2D>& children = (*children_by_depth)[depth - 1];
@@ -246,7 +292,7 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
                         half_width, num_x, num_y, params, with_prior, sums, &children);
     std::sort(children.begin(), children.end(), std::greater<Candidate2D>());
     const Candidate2D child_best = BranchAndBound(scans, params, children, depth - 1, best.score,
-                                                  with_prior, children_by_depth);
+                                                  min_fit, max_fit, with_prior, children_by_depth);
     if (child_best.score > best.score) best = child_best;
   }
   return best;

@@ -144,7 +144,7 @@ InitialMatcher2D::InitialMatcher2D(const InitialMatchOptions2D& options) : optio
 
 bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
                              const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
-                             double* score, common::Rigid2d* pose) {
+                             double* score, common::Rigid2d* pose, double min_fit) {
   assert(submap != nullptr && score != nullptr && pose != nullptr);
   const bool same_submap = cached_submap_.lock() == submap;
   if (matcher_ == nullptr || !same_submap ||
@@ -199,7 +199,7 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
     cached_num_range_data_ = submap->num_range_data();
     ++num_precomputations_;
   }
-  const double min_score = options_.fast_correlative_scan_matcher.min_score;
+  const double min_score = std::max(options_.fast_correlative_scan_matcher.min_score, min_fit);
   if (!matcher_->Match(predicted, cloud, min_score, score, pose)) return false;
   if (options_.min_score_gain <= 0.0) return true;
   // Along a featureless corridor many offsets score alike and the widest search may pick any

@@ -1,5 +1,6 @@
 #include "fusemap/mapping/local_trajectory_builder_2d.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <utility>
@@ -8,6 +9,7 @@ namespace fusemap {
 namespace mapping {
 
 constexpr double LocalTrajectoryBuilder2D::kMaxPredictedJumpM;
+constexpr double LocalTrajectoryBuilder2D::kRematchScoreMargin;
 
 LocalTrajectoryBuilderOptions2D::LocalTrajectoryBuilderOptions2D() {
   loop_closure_adaptive_voxel_filter.max_length_m = 0.9f;
@@ -166,7 +168,16 @@ common::Rigid2d LocalTrajectoryBuilder2D::MatchWidenedAtWindowEdge(
     ++stats_.window_edge_matches;
     double wide_score = 0.0;
     common::Rigid2d wide_pose;
-    if (initial_matcher_.Match(submaps.front(), predicted, cloud, &wide_score, &wide_pose)) {
+    // An answer is taken below only if the real-time match started from it beats both
+    // never-observed space and this match by min_rescore_gain, and that match scores little
+    // more than the answer itself. Most searches find no such answer (orebro: 175 of 191
+    // answers were not taken); told the score, branch and bound prunes what cannot reach it.
+    const double min_fit =
+        std::max(options_.real_time_correlative_scan_matcher.unknown_probability,
+                 *score + options_.initial_branch_and_bound_match.min_rescore_gain) -
+        kRematchScoreMargin;
+    if (initial_matcher_.Match(submaps.front(), predicted, cloud, &wide_score, &wide_pose,
+                               min_fit)) {
       common::Rigid2d rematched;
       const double rematched_score = real_time_matcher_.Match(wide_pose, cloud, grid, &rematched);
       // A fit no better than what a scan scores where nothing was ever observed is no evidence

@@ -207,6 +207,16 @@ TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundWithPriorEqualsBruteForce) 
       EXPECT_NEAR(score, expected.match_score, 1e-9);
       EXPECT_FALSE(matcher.Match(initial, cloud, expected.match_score + 1e-9, &score, &pose));
       EXPECT_TRUE(matcher.Match(initial, cloud, expected.match_score - 1e-9, &score, &pose));
+      // At any threshold the answer is that candidate or none, never another that beats the
+      // threshold but ranks lower (the search prunes by the threshold too).
+      for (double min_score = 0.05; min_score < 1.0; min_score += 0.05) {
+        SCOPED_TRACE(min_score);
+        const bool found = matcher.Match(initial, cloud, min_score, &score, &pose);
+        ASSERT_EQ(found, expected.match_score > min_score);
+        if (!found) continue;
+        EXPECT_NEAR((pose.translation() - expected.best_pose.translation()).norm(), 0.0, 1e-9);
+        EXPECT_NEAR(score, expected.match_score, 1e-9);
+      }
     }
   }
 }
@@ -242,6 +252,40 @@ TEST(FastCorrelativeScanMatcher2DTest, PriorPrefersTheNearerOfTwoEqualMatches) {
   ASSERT_TRUE(FastCorrelativeScanMatcher2D(grid, options).Match(centre, cloud, 0.0, &score, &pose));
   EXPECT_NEAR(pose.translation().x(), 0.7, 1e-6);
   EXPECT_NEAR(score, 0.9, 2e-3);
+}
+
+// Of two posts, the nearer fits less well than the further but the prior ranks it first. A
+// threshold between their fits finds no answer: the first-ranked candidate does not beat it,
+// and the further post is not the answer just because it does.
+TEST(FastCorrelativeScanMatcher2DTest, ThresholdBetweenTwoFitsFindsNoAnswer) {
+  MapLimits limits;
+  limits.resolution_m = 0.05;
+  limits.origin_m = Eigen::Vector2d(-2.0, -2.0);
+  limits.num_x_cells = 80;
+  limits.num_y_cells = 80;
+  ProbabilityGrid grid(limits);
+  sensor::PointCloud2d cloud;
+  for (int i = 0; i < 8; ++i) {
+    const Eigen::Vector2f in_post(0.025f + 0.05f * (i % 2), 0.025f + 0.05f * (i / 2));
+    grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(-0.3f, 0.f)), 0.88f);
+    grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(0.7f, 0.f)), 0.7f);
+    cloud.push_back(in_post);
+  }
+  FastCorrelativeScanMatcherOptions2D options;
+  options.linear_search_window_m = 1.0;
+  options.angular_search_window_rad = 0.0;
+  options.branch_and_bound_depth = 4;
+  // From x = 0.25 the post at 0.7 is 0.45 m away and ranks 0.7 * exp(-(2 * 0.45)^2) = 0.31,
+  // the one at -0.3 is 0.55 m away: 0.88 * exp(-(2 * 0.55)^2) = 0.26.
+  options.translation_delta_cost_weight = 2.0;
+  const FastCorrelativeScanMatcher2D matcher(grid, options);
+  const common::Rigid2d centre(0.25, 0.0, 0.0);
+  double score = 0.0;
+  common::Rigid2d pose;
+  ASSERT_TRUE(matcher.Match(centre, cloud, 0.6, &score, &pose));
+  EXPECT_NEAR(pose.translation().x(), 0.7, 1e-6);
+  EXPECT_NEAR(score, 0.7, 2e-3);
+  EXPECT_FALSE(matcher.Match(centre, cloud, 0.8, &score, &pose)) << pose.DebugString();
 }
 
 // A decoy copy B of the scan (cells at 0.79) whose coarse windows also hold one 0.9 cell per

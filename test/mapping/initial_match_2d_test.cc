@@ -107,6 +107,31 @@ TEST(InitialMatcher2DTest, FindsAPoseFarFromThePredictionAndCachesGrids) {
   EXPECT_EQ(matcher.num_precomputations(), 2);
 }
 
+// min_fit leaves the answer as it was when the answer beats it, and leaves none otherwise.
+TEST(InitialMatcher2DTest, MinFitKeepsTheAnswerOrFindsNone) {
+  const common::Rigid2d truth(3.0, 2.0, 0.3);
+  const std::shared_ptr<const Submap2D> submap = RoomSubmap(truth);
+  const sensor::PointCloud2d cloud =
+      test_world::SimulateRangeData(test_world::Room(), truth).returns;
+  InitialMatchOptions2D options;  // local SLAM's window-edge search, with its prior
+  options.enabled = true;
+  InitialMatcher2D matcher(options);
+  const common::Rigid2d predicted(3.3, 1.8, 0.45);
+  double score = 0.0;
+  common::Rigid2d pose;
+  ASSERT_TRUE(matcher.Match(submap, predicted, cloud, &score, &pose));
+  EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.1);
+  double score_with_min_fit = 0.0;
+  common::Rigid2d pose_with_min_fit;
+  ASSERT_TRUE(matcher.Match(submap, predicted, cloud, &score_with_min_fit, &pose_with_min_fit,
+                            score - 1e-6));
+  EXPECT_EQ(score_with_min_fit, score);
+  EXPECT_TRUE(pose_with_min_fit.translation() == pose.translation());
+  EXPECT_EQ(pose_with_min_fit.angle_rad(), pose.angle_rad());
+  EXPECT_FALSE(matcher.Match(submap, predicted, cloud, &score_with_min_fit, &pose_with_min_fit,
+                             score + 1e-6));
+}
+
 }  // namespace
 }  // namespace mapping
 }  // namespace fusemap

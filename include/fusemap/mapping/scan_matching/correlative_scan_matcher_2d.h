@@ -73,6 +73,9 @@ struct Candidate2D {
   double y_m;
   double angle_rad;
   double score = 0.0;
+  // The score without a search's prior on the distance from its centre (see
+  // FastCorrelativeScanMatcherOptions2D): equal to `score` where there is none.
+  double fit = 0.0;
 
   bool operator<(const Candidate2D& other) const { return score < other.score; }
   bool operator>(const Candidate2D& other) const { return score > other.score; }

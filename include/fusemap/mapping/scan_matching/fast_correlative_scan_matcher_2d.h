@@ -26,8 +26,9 @@ struct FastCorrelativeScanMatcherOptions2D {
   // Prior on the search centre for Match (not MatchFullSubmap), as in the real-time
   // correlative matcher: the search maximises score * exp(-(w_t * d_m + w_r * |a_rad|)^2) for
   // a candidate's offset d_m and turn a_rad from the centre. min_score and the score returned
-  // are the chosen candidate's own score, without the prior. 0 and 0 (the defaults) search as
-  // without a prior.
+  // are the chosen candidate's own score, without the prior: the search returns the candidate
+  // with the best score times prior among those whose own score beats min_score. 0 and 0 (the
+  // defaults) search as without a prior.
   double translation_delta_cost_weight = 0.0;
   double rotation_delta_cost_weight = 0.0;
 
@@ -105,10 +106,13 @@ class FastCorrelativeScanMatcher2D {
   // factor with `with_prior`).
   void SetScore(const PrecomputationGrid2D& grid, long value_sum, int num_points, bool with_prior,
                 Candidate2D* candidate) const;
-  // (*children_by_depth)[d] holds the children scored at depth d (one expansion at a time).
+  // The first best leaf below `candidates` (sorted best first) whose score beats `min_score`
+  // and whose fit is in (`min_fit`, `max_fit`]; if there is none, a candidate whose score does
+  // not beat `min_score` and whose fit is -1. (*children_by_depth)[d] holds the children
+  // scored at depth d (one expansion at a time).
   Candidate2D BranchAndBound(const ScanSet& scans, const SearchParameters& params,
                              const std::vector<Candidate2D>& candidates, int depth,
-                             double min_score, bool with_prior,
+                             double min_score, double min_fit, double max_fit, bool with_prior,
                              std::vector<std::vector<Candidate2D>>* children_by_depth) const;
 
   MapLimits limits_;

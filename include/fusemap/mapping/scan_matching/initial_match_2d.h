@@ -86,9 +86,12 @@ class InitialMatcher2D {
 
   // `predicted` and *pose are T_local_tracking (the submap's grid is in the local frame);
   // `cloud` is in the tracking frame. Returns true and fills *score and *pose if the best
-  // candidate beats min_score.
+  // candidate beats min_score. Candidates whose own score (without the prior) does not beat
+  // `min_fit` are not answers, and the search skips those that cannot: a caller that would
+  // not take an answer below some fit passes it, and the search costs less.
   bool Match(const std::shared_ptr<const Submap2D>& submap, const common::Rigid2d& predicted,
-             const sensor::PointCloud2d& cloud, double* score, common::Rigid2d* pose);
+             const sensor::PointCloud2d& cloud, double* score, common::Rigid2d* pose,
+             double min_fit = 0.0);
 
   // How often the precomputation grids were (re)built, for measurements.
   int num_precomputations() const { return num_precomputations_; }
