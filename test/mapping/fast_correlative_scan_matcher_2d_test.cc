@@ -221,35 +221,41 @@ TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundWithPriorEqualsBruteForce) 
   }
 }
 
+// Two posts of 2 x 4 cells, at x = -0.3 and x = 0.7 (their cells' probabilities given), a
+// scan of one post, and a search 1 m along x (no rotation) around x = 0.25, from where the post
+// at 0.7 is 0.45 m away and the one at -0.3 0.55 m.
+struct TwoPosts {
+  TwoPosts(float left_probability, float right_probability) : grid(Limits()) {
+    for (int i = 0; i < 8; ++i) {
+      // Cell centres, so that no point sits on a cell boundary.
+      const Eigen::Vector2f in_post(0.025f + 0.05f * (i % 2), 0.025f + 0.05f * (i / 2));
+      const MapLimits& limits = grid.limits();
+      grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(-0.3f, 0.f)),
+                          left_probability);
+      grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(0.7f, 0.f)),
+                          right_probability);
+      cloud.push_back(in_post);
+    }
+    options.linear_search_window_m = 1.0;
+    options.angular_search_window_rad = 0.0;
+    options.branch_and_bound_depth = 4;
+  }
+  // 4 m x 4 m of 5 cm cells around the origin.
+  static MapLimits Limits() { return MapLimits{0.05, Eigen::Vector2d(-2.0, -2.0), 80, 80}; }
+  ProbabilityGrid grid;
+  sensor::PointCloud2d cloud;
+  FastCorrelativeScanMatcherOptions2D options;
+  const common::Rigid2d centre{0.25, 0.0, 0.0};
+};
+
 // The prior pulls the answer to the nearer of two equally good places.
 TEST(FastCorrelativeScanMatcher2DTest, PriorPrefersTheNearerOfTwoEqualMatches) {
-  MapLimits limits;
-  limits.resolution_m = 0.05;
-  limits.origin_m = Eigen::Vector2d(-2.0, -2.0);
-  limits.num_x_cells = 80;
-  limits.num_y_cells = 80;
-  ProbabilityGrid grid(limits);
-  // Two identical posts 1 m apart along x; the scan sees one post.
-  sensor::PointCloud2d cloud;
-  for (int i = 0; i < 8; ++i) {
-    for (double post_x : {-0.3, 0.7}) {
-      // Cell centres, so that no point sits on a cell boundary.
-      const Eigen::Array2i cell = limits.GetCellIndex(Eigen::Vector2f(
-          static_cast<float>(post_x + 0.025 + 0.05 * (i % 2)), 0.025f + 0.05f * (i / 2)));
-      grid.SetProbability(cell, 0.9f);
-    }
-    cloud.emplace_back(0.025f + 0.05f * (i % 2), 0.025f + 0.05f * (i / 2));
-  }
-  FastCorrelativeScanMatcherOptions2D options;
-  options.linear_search_window_m = 1.0;
-  options.angular_search_window_rad = 0.0;
-  options.branch_and_bound_depth = 4;
-  // Centre at x = 0.25: the post at 0.7 is 0.45 m away, the one at -0.3 is 0.55 m away.
-  const common::Rigid2d centre(0.25, 0.0, 0.0);
-  options.translation_delta_cost_weight = 1.0;
+  TwoPosts posts(0.9f, 0.9f);
+  posts.options.translation_delta_cost_weight = 1.0;
   double score = 0.0;
   common::Rigid2d pose;
-  ASSERT_TRUE(FastCorrelativeScanMatcher2D(grid, options).Match(centre, cloud, 0.0, &score, &pose));
+  ASSERT_TRUE(FastCorrelativeScanMatcher2D(posts.grid, posts.options)
+                  .Match(posts.centre, posts.cloud, 0.0, &score, &pose));
   EXPECT_NEAR(pose.translation().x(), 0.7, 1e-6);
   EXPECT_NEAR(score, 0.9, 2e-3);
 }
@@ -258,34 +264,17 @@ TEST(FastCorrelativeScanMatcher2DTest, PriorPrefersTheNearerOfTwoEqualMatches) {
 // threshold between their fits finds no answer: the first-ranked candidate does not beat it,
 // and the further post is not the answer just because it does.
 TEST(FastCorrelativeScanMatcher2DTest, ThresholdBetweenTwoFitsFindsNoAnswer) {
-  MapLimits limits;
-  limits.resolution_m = 0.05;
-  limits.origin_m = Eigen::Vector2d(-2.0, -2.0);
-  limits.num_x_cells = 80;
-  limits.num_y_cells = 80;
-  ProbabilityGrid grid(limits);
-  sensor::PointCloud2d cloud;
-  for (int i = 0; i < 8; ++i) {
-    const Eigen::Vector2f in_post(0.025f + 0.05f * (i % 2), 0.025f + 0.05f * (i / 2));
-    grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(-0.3f, 0.f)), 0.88f);
-    grid.SetProbability(limits.GetCellIndex(in_post + Eigen::Vector2f(0.7f, 0.f)), 0.7f);
-    cloud.push_back(in_post);
-  }
-  FastCorrelativeScanMatcherOptions2D options;
-  options.linear_search_window_m = 1.0;
-  options.angular_search_window_rad = 0.0;
-  options.branch_and_bound_depth = 4;
-  // From x = 0.25 the post at 0.7 is 0.45 m away and ranks 0.7 * exp(-(2 * 0.45)^2) = 0.31,
-  // the one at -0.3 is 0.55 m away: 0.88 * exp(-(2 * 0.55)^2) = 0.26.
-  options.translation_delta_cost_weight = 2.0;
-  const FastCorrelativeScanMatcher2D matcher(grid, options);
-  const common::Rigid2d centre(0.25, 0.0, 0.0);
+  TwoPosts posts(0.88f, 0.7f);
+  // The post at 0.7 ranks 0.7 * exp(-(2 * 0.45)^2) = 0.31, the one at -0.3
+  // 0.88 * exp(-(2 * 0.55)^2) = 0.26.
+  posts.options.translation_delta_cost_weight = 2.0;
+  const FastCorrelativeScanMatcher2D matcher(posts.grid, posts.options);
   double score = 0.0;
   common::Rigid2d pose;
-  ASSERT_TRUE(matcher.Match(centre, cloud, 0.6, &score, &pose));
+  ASSERT_TRUE(matcher.Match(posts.centre, posts.cloud, 0.6, &score, &pose));
   EXPECT_NEAR(pose.translation().x(), 0.7, 1e-6);
   EXPECT_NEAR(score, 0.7, 2e-3);
-  EXPECT_FALSE(matcher.Match(centre, cloud, 0.8, &score, &pose)) << pose.DebugString();
+  EXPECT_FALSE(matcher.Match(posts.centre, posts.cloud, 0.8, &score, &pose)) << pose.DebugString();
 }
 
 // A decoy copy B of the scan (cells at 0.79) whose coarse windows also hold one 0.9 cell per
