@@ -158,9 +158,10 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
     // min_score. That is searched in two steps, each pruning more than one search for the
     // first-ranked candidate could: the first-ranked among those that beat min_score (subtrees
     // whose scores cannot are skipped, however well the prior ranks them); then, only if there
-    // is one, whether any candidate that does not beat min_score is ranked above it (then that
-    // one would be the answer; none that does can be). Most of local SLAM's wide searches end after the first step
-    // with nothing found, their caller having asked for a score that would change its answer.
+    // is one, whether a candidate that does not beat min_score is ranked above it (then that
+    // one would be the answer; none that beats min_score can be). Most of local SLAM's wide
+    // searches end after the first step with nothing found, their caller having asked for a
+    // score that would change its answer.
     best = BranchAndBound(
         scans, params, kept_where([min_score](const Candidate2D& c) { return c.fit > min_score; }),
         grids_.max_depth(), 0.0, min_score, kNoMaxFit, with_prior, &children_by_depth);

@@ -26,9 +26,9 @@ struct FastCorrelativeScanMatcherOptions2D {
   // Prior on the search centre for Match (not MatchFullSubmap), as in the real-time
   // correlative matcher: the search maximises score * exp(-(w_t * d_m + w_r * |a_rad|)^2) for
   // a candidate's offset d_m and turn a_rad from the centre. min_score and the score returned
-  // are the chosen candidate's own score, without the prior: the search returns the candidate
-  // with the best score times prior among those whose own score beats min_score. 0 and 0 (the
-  // defaults) search as without a prior.
+  // are the chosen candidate's own score, without the prior: the answer is the candidate with
+  // the best score times prior, and there is none if its own score does not beat min_score.
+  // 0 and 0 (the defaults) search as without a prior.
   double translation_delta_cost_weight = 0.0;
   double rotation_delta_cost_weight = 0.0;
 

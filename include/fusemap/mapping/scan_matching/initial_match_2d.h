@@ -86,9 +86,9 @@ class InitialMatcher2D {
 
   // `predicted` and *pose are T_local_tracking (the submap's grid is in the local frame);
   // `cloud` is in the tracking frame. Returns true and fills *score and *pose if the best
-  // candidate beats min_score. Candidates whose own score (without the prior) does not beat
-  // `min_fit` are not answers, and the search skips those that cannot: a caller that would
-  // not take an answer below some fit passes it, and the search costs less.
+  // candidate beats min_score and `min_fit`: a caller that would not take an answer scoring
+  // less passes it, and the search prunes what cannot reach it. The answer, where there is
+  // one, is the same as without it.
   bool Match(const std::shared_ptr<const Submap2D>& submap, const common::Rigid2d& predicted,
              const sensor::PointCloud2d& cloud, double* score, common::Rigid2d* pose,
              double min_fit = 0.0);
