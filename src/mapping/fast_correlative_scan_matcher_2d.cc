@@ -5,7 +5,6 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
-#include <iterator>
 #include <utility>
 
 namespace fusemap {
@@ -139,40 +138,25 @@ bool FastCorrelativeScanMatcher2D::MatchWithSearchParameters(
 
   const std::vector<Candidate2D> lowest_resolution_candidates =
       ComputeLowestResolutionCandidates(scans, params, with_prior);
-  // The lowest-resolution candidates `keep` accepts, in the same order (best first).
-  const auto kept_where = [&lowest_resolution_candidates](const auto& keep) {
-    std::vector<Candidate2D> kept;
-    std::copy_if(lowest_resolution_candidates.begin(), lowest_resolution_candidates.end(),
-                 std::back_inserter(kept), keep);
-    return kept;
-  };
+  // With a prior, the threshold is on the match itself: the prior only chooses among matches,
+  // so a good match far from the centre is not rejected for being far. The answer is the
+  // candidate the prior ranks first, and none if its own score does not beat min_score. That
+  // is searched in two steps, each pruning more than one search for the first-ranked candidate
+  // could: the first-ranked among those that beat min_score (subtrees whose scores cannot are
+  // skipped, however well the prior ranks them); then, only if there is one, whether a
+  // candidate that does not beat min_score is ranked above it (then that one would be the
+  // answer; none that beats min_score can be). Most of local SLAM's wide searches end after the
+  // first step with nothing found, their caller having asked for a score that would change its
+  // answer. Without a prior the first step is the whole search.
   std::vector<std::vector<Candidate2D>> children_by_depth(grids_.max_depth());
-  Candidate2D best(0, 0, 0, params);
-  if (!with_prior) {
-    best = BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(),
-                          min_score, min_score, kNoMaxFit, with_prior, &children_by_depth);
-  } else {
-    // With a prior, the threshold is on the match itself: the prior only chooses among
-    // matches, so a good match far from the centre is not rejected for being far. The answer
-    // is the candidate the prior ranks first, and none if its own score does not beat
-    // min_score. That is searched in two steps, each pruning more than one search for the
-    // first-ranked candidate could: the first-ranked among those that beat min_score (subtrees
-    // whose scores cannot are skipped, however well the prior ranks them); then, only if there
-    // is one, whether a candidate that does not beat min_score is ranked above it (then that
-    // one would be the answer; none that beats min_score can be). Most of local SLAM's wide
-    // searches end after the first step with nothing found, their caller having asked for a
-    // score that would change its answer.
-    best = BranchAndBound(
-        scans, params, kept_where([min_score](const Candidate2D& c) { return c.fit > min_score; }),
-        grids_.max_depth(), 0.0, min_score, kNoMaxFit, with_prior, &children_by_depth);
-    if (best.fit > min_score) {
-      const double best_score = best.score;
-      const Candidate2D ranked_above = BranchAndBound(
-          scans, params,
-          kept_where([best_score](const Candidate2D& c) { return c.score > best_score; }),
-          grids_.max_depth(), best_score, -1.0, min_score, with_prior, &children_by_depth);
-      if (ranked_above.score > best_score) return false;
-    }
+  const Candidate2D best = BranchAndBound(scans, params, lowest_resolution_candidates,
+                                          grids_.max_depth(), with_prior ? 0.0 : min_score,
+                                          min_score, kNoMaxFit, with_prior, &children_by_depth);
+  if (with_prior && best.fit > min_score) {
+    const Candidate2D ranked_above =
+        BranchAndBound(scans, params, lowest_resolution_candidates, grids_.max_depth(), best.score,
+                       -1.0, min_score, with_prior, &children_by_depth);
+    if (ranked_above.score > best.score) return false;
   }
   if (!(best.fit > min_score)) return false;
   *score = best.fit;
