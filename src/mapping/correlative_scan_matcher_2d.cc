@@ -83,10 +83,11 @@ std::vector<DiscreteScan2D> DiscretizeScans(const MapLimits& limits,
   std::vector<DiscreteScan2D> discrete_scans;
   discrete_scans.reserve(scans.size());
   for (const sensor::PointCloud2d& scan : scans) {
-    DiscreteScan2D discrete;
-    discrete.reserve(scan.size());
-    for (const Eigen::Vector2f& point : scan) {
-      discrete.push_back(limits.GetCellIndex(point + initial_translation));
+    // Sized first and written by index: with push_back, each cell went through the stack and
+    // the loop waited on it (local SLAM's wide search discretises hundreds of rotated scans).
+    DiscreteScan2D discrete(scan.size());
+    for (size_t i = 0; i < scan.size(); ++i) {
+      discrete[i] = limits.GetCellIndex(scan[i] + initial_translation);
     }
     discrete_scans.push_back(std::move(discrete));
   }

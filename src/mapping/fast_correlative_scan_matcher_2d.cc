@@ -5,6 +5,7 @@
 #include <cassert>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <utility>
 
 namespace fusemap {
@@ -281,6 +282,44 @@ Candidate2D FastCorrelativeScanMatcher2D::BranchAndBound(
     if (child_best.score > best.score) best = child_best;
   }
   return best;
+}
+
+CellBox CellsReadByMatch(const MapLimits& limits,
+                         const FastCorrelativeScanMatcherOptions2D& options,
+                         const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud) {
+  if (cloud.empty()) return CellBox{};
+  // The search's own angles (its step depends on the cloud) and offsets.
+  const SearchParameters params(options.linear_search_window_m, options.angular_search_window_rad,
+                                cloud, limits.resolution_m);
+  const double max_angle_rad = params.num_angular_perturbations * params.angular_step_rad;
+  const int num_linear = params.linear_bounds.front().max_x;
+  // Each point's arc through the window, at kSamples + 1 angles: between two of them it strays
+  // from their chord, and so from the box of its ends, by at most r (1 - cos(step / 2)).
+  constexpr int kSamples = 16;
+  const double sample_step_rad = 2.0 * max_angle_rad / kSamples;
+  double max_range_m = 0.0;
+  for (const Eigen::Vector2f& point : cloud) {
+    max_range_m = std::max(max_range_m, point.cast<double>().norm());
+  }
+  const double sagitta_m = max_range_m * (1.0 - std::cos(0.5 * sample_step_rad));
+  Eigen::Vector2d min_m = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::Vector2d max_m = -min_m;
+  for (int k = 0; k <= kSamples; ++k) {
+    const Eigen::Matrix2d rotation =
+        Eigen::Rotation2Dd(initial_pose.angle_rad() - max_angle_rad + k * sample_step_rad).matrix();
+    for (const Eigen::Vector2f& point : cloud) {
+      const Eigen::Vector2d moved_m = rotation * point.cast<double>() + initial_pose.translation();
+      min_m = min_m.cwiseMin(moved_m);
+      max_m = max_m.cwiseMax(moved_m);
+    }
+  }
+  const Eigen::Vector2d pad_m = Eigen::Vector2d::Constant(sagitta_m);
+  // One cell more each way: the search rotates and rounds in float.
+  const Eigen::Array2i min_cell =
+      limits.GetCellIndex((min_m - pad_m).cast<float>()) - (num_linear + 1);
+  const Eigen::Array2i max_cell =
+      limits.GetCellIndex((max_m + pad_m).cast<float>()) + (num_linear + 1);
+  return CellBox{min_cell, max_cell.x() - min_cell.x() + 1, max_cell.y() - min_cell.y() + 1};
 }
 
 }  // namespace mapping

@@ -142,13 +142,51 @@ InitialMatcher2D::InitialMatcher2D(const InitialMatchOptions2D& options) : optio
   (void)error;
 }
 
+namespace {
+
+bool Contains(const CellBox& outer, const CellBox& inner) {
+  return inner.num_x_cells <= 0 || inner.num_y_cells <= 0 ||
+         ((inner.min_cell >= outer.min_cell).all() &&
+          inner.min_cell.x() + inner.num_x_cells <= outer.min_cell.x() + outer.num_x_cells &&
+          inner.min_cell.y() + inner.num_y_cells <= outer.min_cell.y() + outer.num_y_cells);
+}
+
+}  // namespace
+
 bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
                              const common::Rigid2d& predicted, const sensor::PointCloud2d& cloud,
                              double* score, common::Rigid2d* pose, double min_fit) {
   assert(submap != nullptr && score != nullptr && pose != nullptr);
+  FastCorrelativeScanMatcherOptions2D local;
+  if (options_.min_score_gain > 0.0) {
+    local.linear_search_window_m = options_.near_linear_search_window_m;
+    local.angular_search_window_rad = options_.near_angular_search_window_rad;
+    local.branch_and_bound_depth = options_.fast_correlative_scan_matcher.branch_and_bound_depth;
+    local.translation_delta_cost_weight =
+        options_.fast_correlative_scan_matcher.translation_delta_cost_weight;
+    local.rotation_delta_cost_weight =
+        options_.fast_correlative_scan_matcher.rotation_delta_cost_weight;
+  }
+  // The cells this search reads, of the grids laid out as `limits`.
+  const auto cells_read = [&](const MapLimits& limits) {
+    CellBox reads =
+        CellsReadByMatch(limits, options_.fast_correlative_scan_matcher, predicted, cloud);
+    if (options_.min_score_gain > 0.0) {
+      const CellBox near = CellsReadByMatch(limits, local, predicted, cloud);
+      const Eigen::Array2i min_cell = reads.min_cell.min(near.min_cell);
+      const Eigen::Array2i end_cell =
+          (reads.min_cell + Eigen::Array2i(reads.num_x_cells, reads.num_y_cells))
+              .max(near.min_cell + Eigen::Array2i(near.num_x_cells, near.num_y_cells));
+      reads = CellBox{min_cell, end_cell.x() - min_cell.x(), end_cell.y() - min_cell.y()};
+    }
+    return reads;
+  };
   const bool same_submap = cached_submap_.lock() == submap;
+  // The grids are built for the cells the search reads only (a few metres around the scan,
+  // where an open hall's submap spans tens), so a search that reads others rebuilds them.
   if (matcher_ == nullptr || !same_submap ||
-      submap->num_range_data() - cached_num_range_data_ >= options_.refresh_every_n_insertions) {
+      submap->num_range_data() - cached_num_range_data_ >= options_.refresh_every_n_insertions ||
+      !Contains(cached_reads_, cells_read(cached_limits_))) {
     const std::shared_ptr<const ProbabilityGrid> grid = submap->grid();
     const int factor = std::max(
         1, static_cast<int>(std::lround(options_.matching_resolution_m /
@@ -176,27 +214,20 @@ bool InitialMatcher2D::Match(const std::shared_ptr<const Submap2D>& submap,
       box = CellBox{Eigen::Array2i::Zero(), limits.num_x_cells, limits.num_y_cells};
     }
     const ProbabilityGrid& source = pooled.has_value() ? *pooled : *grid;
+    const CellBox reads = cells_read(limits);
     const auto make_matcher = [&](const FastCorrelativeScanMatcherOptions2D& options) {
       return std::make_unique<FastCorrelativeScanMatcher2D>(
           limits,
           PrecomputationGridStack2D(source, box, options_.unknown_probability,
-                                    options.branch_and_bound_depth, &buffers_),
+                                    options.branch_and_bound_depth, reads, &buffers_),
           options);
     };
     matcher_ = make_matcher(options_.fast_correlative_scan_matcher);
-    if (options_.min_score_gain > 0.0) {
-      FastCorrelativeScanMatcherOptions2D local;
-      local.linear_search_window_m = options_.near_linear_search_window_m;
-      local.angular_search_window_rad = options_.near_angular_search_window_rad;
-      local.branch_and_bound_depth = options_.fast_correlative_scan_matcher.branch_and_bound_depth;
-      local.translation_delta_cost_weight =
-          options_.fast_correlative_scan_matcher.translation_delta_cost_weight;
-      local.rotation_delta_cost_weight =
-          options_.fast_correlative_scan_matcher.rotation_delta_cost_weight;
-      local_matcher_ = make_matcher(local);
-    }
+    if (options_.min_score_gain > 0.0) local_matcher_ = make_matcher(local);
     cached_submap_ = submap;
     cached_num_range_data_ = submap->num_range_data();
+    cached_limits_ = limits;
+    cached_reads_ = reads;
     ++num_precomputations_;
   }
   const double min_score = std::max(options_.fast_correlative_scan_matcher.min_score, min_fit);

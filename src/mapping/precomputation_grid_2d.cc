@@ -30,6 +30,16 @@ void GiveBuffer(PrecomputationBuffers* buffers, std::vector<uint8_t> buffer) {
   if (buffers != nullptr) buffers->Give(std::move(buffer));
 }
 
+// See PrecomputationBuffers::quantisation_table.
+std::vector<uint8_t> MakeQuantisationTable() {
+  std::vector<uint8_t> table(kMaxValue + 1);
+  for (int value = 0; value <= kMaxValue; ++value) {
+    table[value] =
+        ProbabilityToPrecomputationValue(ValueToProbability(static_cast<uint16_t>(value)));
+  }
+  return table;
+}
+
 CellBox WholeGrid(const ProbabilityGrid& grid) {
   return CellBox{Eigen::Array2i::Zero(), grid.limits().num_x_cells, grid.limits().num_y_cells};
 }
@@ -60,16 +70,21 @@ PlaneView View(const Plane& plane) {
   return {plane.min, plane.size_x, plane.size_y, plane.values.data()};
 }
 
-// Maximum over 2 x 2 blocks: block maxima at twice the block size (`in` starts at index 0).
-// Every output value is written, so `buffers` may hand out storage with stale values.
+// Maximum over 2 x 2 blocks: block maxima at twice the block size (`in` starts at an even
+// index, so that its blocks pair up as the whole grid's do). Every output value is written, so
+// `buffers` may hand out storage with stale values.
 Plane HalveByMax(const PlaneView& in, PrecomputationBuffers* buffers) {
+  assert(in.min.x() % 2 == 0 && in.min.y() % 2 == 0);
   Plane out;
+  out.min = in.min / 2;
   out.size_x = (in.size_x + 1) / 2;
   out.size_y = (in.size_y + 1) / 2;
   out.values = TakeBuffer(buffers, static_cast<size_t>(out.size_x) * out.size_y);
-  for (int y = 0; y < out.size_y; ++y) {
-    for (int x = 0; x < out.size_x; ++x) {
-      out.values[static_cast<size_t>(y) * out.size_x + x] =
+  for (int j = 0; j < out.size_y; ++j) {
+    const int y = out.min.y() + j;
+    for (int i = 0; i < out.size_x; ++i) {
+      const int x = out.min.x() + i;
+      out.values[static_cast<size_t>(j) * out.size_x + i] =
           std::max(std::max(in.At(2 * x, 2 * y), in.At(2 * x + 1, 2 * y)),
                    std::max(in.At(2 * x, 2 * y + 1), in.At(2 * x + 1, 2 * y + 1)));
     }
@@ -156,6 +171,11 @@ void PrecomputationBuffers::Give(std::vector<uint8_t> buffer) {
   buffers_.push_back(std::move(buffer));
 }
 
+const std::vector<uint8_t>& PrecomputationBuffers::quantisation_table() {
+  if (quantisation_table_.empty()) quantisation_table_ = MakeQuantisationTable();
+  return quantisation_table_;
+}
+
 PrecomputationGrid2D::PrecomputationGrid2D(int width_cells, int block_shift,
                                            const Eigen::Array2i& min_block, int size_x, int size_y,
                                            std::vector<uint8_t> values)
@@ -169,36 +189,41 @@ PrecomputationGrid2D::PrecomputationGrid2D(int width_cells, int block_shift,
 }
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid)
-    : PrecomputationGrid2D(grid, WholeGrid(grid), kMinProbability, std::vector<uint8_t>()) {}
+    : PrecomputationGrid2D(grid, WholeGrid(grid), WholeGrid(grid), kMinProbability,
+                           MakeQuantisationTable(), std::vector<uint8_t>()) {}
 
 PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box,
-                                           float unknown_probability, std::vector<uint8_t> values)
+                                           const CellBox& stored, float unknown_probability,
+                                           const std::vector<uint8_t>& quantisation_table,
+                                           std::vector<uint8_t> values)
     : width_cells_(1),
       block_shift_(0),
-      min_block_(Eigen::Array2i::Zero()),
-      size_x_(box.num_x_cells),
-      size_y_(box.num_y_cells),
+      min_block_(stored.min_cell),
+      size_x_(stored.num_x_cells),
+      size_y_(stored.num_y_cells),
       values_(std::move(values)) {
+  assert(stored.min_cell.minCoeff() >= 0 &&
+         stored.min_cell.x() + stored.num_x_cells <= box.num_x_cells &&
+         stored.min_cell.y() + stored.num_y_cells <= box.num_y_cells);
+  // The grid's index of stored cell 0.
+  const Eigen::Array2i stored_min = box.min_cell + stored.min_cell;
   values_.resize(static_cast<size_t>(size_x_) * size_y_);
   const std::vector<uint16_t>& cells = grid.cells();
-  // Raw cells quantised through a table (ValueToProbability reads kUnknownValue as
-  // kMinProbability, as GetProbability does): millions of cells, 32768 possible values.
-  std::vector<uint8_t> table(kMaxValue + 1);
-  for (int value = 0; value <= kMaxValue; ++value) {
-    table[value] = ProbabilityToPrecomputationValue(ValueToProbability(static_cast<uint16_t>(value)));
-  }
+  // Raw cells quantised through a table: millions of cells, 32768 possible values.
+  assert(quantisation_table.size() == kMaxValue + 1u);
+  std::vector<uint8_t> table = quantisation_table;
   if (unknown_probability > kMinProbability) {
     table[kUnknownValue] = table[ProbabilityToValue(unknown_probability)];
   }
   const uint8_t unknown = table[kUnknownValue];
   const int grid_size_x = grid.limits().num_x_cells;
   const int grid_size_y = grid.limits().num_y_cells;
-  // The box's columns that lie on the grid: [first_x, end_x) in box coordinates.
-  const int first_x = std::clamp(-box.min_cell.x(), 0, size_x_);
-  const int end_x = std::clamp(grid_size_x - box.min_cell.x(), first_x, size_x_);
+  // The stored columns that lie on the grid: [first_x, end_x) from the first stored one.
+  const int first_x = std::clamp(-stored_min.x(), 0, size_x_);
+  const int end_x = std::clamp(grid_size_x - stored_min.x(), first_x, size_x_);
   for (int y = 0; y < size_y_; ++y) {
     uint8_t* const row = values_.data() + static_cast<size_t>(y) * size_x_;
-    const int grid_y = box.min_cell.y() + y;
+    const int grid_y = stored_min.y() + y;
     if (grid_y < 0 || grid_y >= grid_size_y) {
       std::fill_n(row, size_x_, unknown);
       continue;
@@ -206,7 +231,7 @@ PrecomputationGrid2D::PrecomputationGrid2D(const ProbabilityGrid& grid, const Ce
     std::fill_n(row, first_x, unknown);
     const uint16_t* const grid_row = cells.data() + static_cast<size_t>(grid_y) * grid_size_x;
     for (int x = first_x; x < end_x; ++x) {
-      row[x] = table[grid_row[box.min_cell.x() + x] & static_cast<uint16_t>(~kUpdateMarker)];
+      row[x] = table[grid_row[stored_min.x() + x] & static_cast<uint16_t>(~kUpdateMarker)];
     }
     std::fill(row + end_x, row + size_x_, unknown);
   }
@@ -352,14 +377,40 @@ PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid
 
 PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid,
                                                      const CellBox& box, float unknown_probability,
-                                                     int max_depth,
+                                                     int max_depth, PrecomputationBuffers* buffers)
+    : PrecomputationGridStack2D(grid, box, unknown_probability, max_depth,
+                                CellBox{Eigen::Array2i::Zero(), box.num_x_cells, box.num_y_cells},
+                                buffers) {}
+
+PrecomputationGridStack2D::PrecomputationGridStack2D(const ProbabilityGrid& grid,
+                                                     const CellBox& box, float unknown_probability,
+                                                     int max_depth, const CellBox& reads,
                                                      PrecomputationBuffers* buffers) {
   assert(max_depth >= 0 && box.num_x_cells >= 0 && box.num_y_cells >= 0);
+  // The base cells the windows read at `reads` reach, at any depth: w - 1 past a window's
+  // start for the exact depths, up to w + 2 blocks for the blocked ones (see the header); 2 w
+  // covers both. Started on a block boundary of the deepest level, so that the blocks are the
+  // same as over the whole box.
+  const int reach = 2 << max_depth;
+  const int block = 1 << std::max(0, max_depth - kExactDepths);
+  CellBox stored;
+  int stored_max[2];
+  for (int axis = 0; axis < 2; ++axis) {
+    const int size = axis == 0 ? box.num_x_cells : box.num_y_cells;
+    const int read_size = axis == 0 ? reads.num_x_cells : reads.num_y_cells;
+    // Floor to a multiple of `block` (>= 0 here).
+    const int min = std::clamp(reads.min_cell[axis], 0, size) / block * block;
+    stored.min_cell[axis] = min;
+    stored_max[axis] = std::clamp(reads.min_cell[axis] + read_size - 1 + reach, min - 1, size - 1);
+  }
+  stored.num_x_cells = stored_max[0] - stored.min_cell.x() + 1;
+  stored.num_y_cells = stored_max[1] - stored.min_cell.y() + 1;
   // Reserved: the levels are read in place (PlaneView) while the next one is built.
   grids_.reserve(max_depth + 1);
   grids_.push_back(PrecomputationGrid2D(
-      grid, box, unknown_probability,
-      TakeBuffer(buffers, static_cast<size_t>(box.num_x_cells) * box.num_y_cells)));
+      grid, box, stored, unknown_probability,
+      buffers != nullptr ? buffers->quantisation_table() : MakeQuantisationTable(),
+      TakeBuffer(buffers, static_cast<size_t>(stored.num_x_cells) * stored.num_y_cells)));
   const auto view = [](const PrecomputationGrid2D& level) {
     return PlaneView{level.min_block_, level.size_x_, level.size_y_, level.values_.data()};
   };

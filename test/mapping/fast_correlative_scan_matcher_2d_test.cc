@@ -221,6 +221,64 @@ TEST(FastCorrelativeScanMatcher2DTest, BranchAndBoundWithPriorEqualsBruteForce) 
   }
 }
 
+// CellsReadByMatch holds every cell the search can read: each rotated scan's cells (as the
+// search rotates and rounds them) moved by every offset of the window. And a matcher over a
+// stack built for those cells only gives the answer of one over the whole grid, with and
+// without a prior, at several thresholds.
+TEST(FastCorrelativeScanMatcher2DTest, StackForTheCellsReadGivesTheSameAnswer) {
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    SCOPED_TRACE(seed);
+    RandomMatchProblem problem(seed);
+    FastCorrelativeScanMatcherOptions2D options = problem.options;
+    // Wider than the problem's, as local SLAM's wide search: far points sweep long arcs.
+    options.angular_search_window_rad = 0.5;
+    options.branch_and_bound_depth = 2 + seed % 5;  // blocked levels from 4 on
+    if (seed % 2 == 0) options.translation_delta_cost_weight = 0.5;
+    const MapLimits& limits = problem.grid.limits();
+    const CellBox reads = CellsReadByMatch(limits, options, problem.initial, problem.cloud);
+
+    const SearchParameters params(options.linear_search_window_m, options.angular_search_window_rad,
+                                  problem.cloud, limits.resolution_m);
+    const Eigen::Matrix2f rotation =
+        Eigen::Rotation2Df(static_cast<float>(problem.initial.angle_rad())).matrix();
+    sensor::PointCloud2d rotated;
+    for (const Eigen::Vector2f& point : problem.cloud) rotated.push_back(rotation * point);
+    const int num_linear = params.linear_bounds.front().max_x;
+    for (const DiscreteScan2D& scan :
+         DiscretizeScans(limits, GenerateRotatedScans(rotated, params),
+                         problem.initial.translation().cast<float>())) {
+      for (const Eigen::Array2i& cell : scan) {
+        ASSERT_TRUE((cell - num_linear >= reads.min_cell).all());
+        ASSERT_LT(cell.x() + num_linear, reads.min_cell.x() + reads.num_x_cells);
+        ASSERT_LT(cell.y() + num_linear, reads.min_cell.y() + reads.num_y_cells);
+      }
+    }
+
+    const CellBox whole_grid{Eigen::Array2i::Zero(), limits.num_x_cells, limits.num_y_cells};
+    const FastCorrelativeScanMatcher2D whole(problem.grid, options);
+    const FastCorrelativeScanMatcher2D part(
+        limits,
+        PrecomputationGridStack2D(problem.grid, whole_grid, kMinProbability,
+                                  options.branch_and_bound_depth, reads),
+        options);
+    for (double min_score : {0.0, 0.3, 0.5, 0.6}) {
+      double whole_score = 0.0;
+      double part_score = 0.0;
+      common::Rigid2d whole_pose;
+      common::Rigid2d part_pose;
+      const bool found =
+          whole.Match(problem.initial, problem.cloud, min_score, &whole_score, &whole_pose);
+      ASSERT_EQ(part.Match(problem.initial, problem.cloud, min_score, &part_score, &part_pose),
+                found)
+          << min_score;
+      if (!found) continue;
+      EXPECT_EQ(part_score, whole_score);
+      EXPECT_EQ(part_pose.translation(), whole_pose.translation());
+      EXPECT_EQ(part_pose.angle_rad(), whole_pose.angle_rad());
+    }
+  }
+}
+
 // Two posts of 2 x 4 cells, at x = -0.3 and x = 0.7 (their cells' probabilities given), a
 // scan of one post, and a search 1 m along x (no rotation) around x = 0.25, from where the post
 // at 0.7 is 0.45 m away and the one at -0.3 0.55 m.

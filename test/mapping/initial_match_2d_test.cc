@@ -99,12 +99,23 @@ TEST(InitialMatcher2DTest, FindsAPoseFarFromThePredictionAndCachesGrids) {
   EXPECT_GT(score, 0.6);
   EXPECT_LT((pose.translation() - truth.translation()).norm(), 0.2);  // one search cell
   EXPECT_NEAR(pose.angle_rad(), truth.angle_rad(), 0.03);
+  ASSERT_TRUE(matcher.Match(submap, common::Rigid2d(4.0, 1.4, -0.1), cloud, &score, &pose));
+  EXPECT_EQ(matcher.num_precomputations(), 1);  // same submap and cells, no new insertions
+
+  // The grids cover the cells a search reads only: a search 1.2 m away reads others, rebuilds
+  // them, and answers as a matcher that never searched before.
+  double fresh_score = 0.0;
+  common::Rigid2d fresh_pose;
+  ASSERT_TRUE(InitialMatcher2D(options).Match(submap, truth, cloud, &fresh_score, &fresh_pose));
   ASSERT_TRUE(matcher.Match(submap, truth, cloud, &score, &pose));
-  EXPECT_EQ(matcher.num_precomputations(), 1);  // same submap, no new insertions
+  EXPECT_EQ(matcher.num_precomputations(), 2);
+  EXPECT_EQ(score, fresh_score);
+  EXPECT_TRUE(pose.translation() == fresh_pose.translation());
+  EXPECT_EQ(pose.angle_rad(), fresh_pose.angle_rad());
 
   // Another submap always rebuilds.
   ASSERT_TRUE(matcher.Match(RoomSubmap(truth), truth, cloud, &score, &pose));
-  EXPECT_EQ(matcher.num_precomputations(), 2);
+  EXPECT_EQ(matcher.num_precomputations(), 3);
 }
 
 // min_fit leaves the answer as it was when the answer beats it, and leaves none otherwise.

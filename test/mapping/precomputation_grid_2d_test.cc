@@ -293,6 +293,45 @@ TEST(PrecomputationGridStack2DTest, StackOverABoxEqualsStackOverItsCopy) {
   }
 }
 
+// A stack built for the cells a search reads holds, at every depth (exact and blocked), the
+// values of the stack over the whole box at those cells: reads inside the box, across its
+// edges, off it, and with the grid's own storage recycled between the two.
+TEST(PrecomputationGridStack2DTest, StackForTheCellsReadEqualsTheWholeStackThere) {
+  const ProbabilityGrid grid = MakeRandomGrid(250, 200, 12);
+  const CellBox box{Eigen::Array2i(-5, -3), 257, 210};
+  const std::vector<CellBox> all_reads = {
+      CellBox{Eigen::Array2i(20, 15), 17, 9},     // inside
+      CellBox{Eigen::Array2i(-12, -7), 30, 25},   // past the low sides
+      CellBox{Eigen::Array2i(230, 190), 40, 33},  // past the high sides
+      CellBox{Eigen::Array2i(33, 41), 1, 1},      // one cell, off the blocks' boundaries
+      CellBox{Eigen::Array2i(300, 5), 6, 6},      // off the box
+      CellBox{Eigen::Array2i(-90, -90), 8, 8},    // off the box, below
+  };
+  PrecomputationBuffers buffers;
+  for (int max_depth : {2, 5, 6}) {
+    const PrecomputationGridStack2D whole(grid, box, 0.5f, max_depth);
+    for (const CellBox& reads : all_reads) {
+      PrecomputationGridStack2D part(grid, box, 0.5f, max_depth, reads, &buffers);
+      ASSERT_EQ(part.max_depth(), max_depth);
+      for (int depth = 0; depth <= max_depth; ++depth) {
+        for (int y = reads.min_cell.y(); y < reads.min_cell.y() + reads.num_y_cells; ++y) {
+          for (int x = reads.min_cell.x(); x < reads.min_cell.x() + reads.num_x_cells; ++x) {
+            const Eigen::Array2i cell(x, y);
+            ASSERT_EQ(part.Get(depth).GetValue(cell), whole.Get(depth).GetValue(cell))
+                << "reads at " << reads.min_cell.transpose() << " depth " << depth << " of "
+                << max_depth << " cell " << x << "," << y;
+          }
+        }
+      }
+      part.ReleaseInto(&buffers);
+    }
+  }
+  // Built from part of the box only: a few cells' stack takes a fraction of the whole's.
+  const CellBox few{Eigen::Array2i(20, 15), 10, 10};
+  EXPECT_LT(PrecomputationGridStack2D(grid, box, 0.5f, 2, few).bytes(),
+            PrecomputationGridStack2D(grid, box, 0.5f, 2).bytes() / 4);
+}
+
 // Take hands out the smallest buffer that holds the size, else the largest, grown.
 TEST(PrecomputationBuffersTest, TakesTheSmallestThatFitsElseTheLargest) {
   PrecomputationBuffers buffers;

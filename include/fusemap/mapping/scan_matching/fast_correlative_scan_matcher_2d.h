@@ -120,6 +120,14 @@ class FastCorrelativeScanMatcher2D {
   PrecomputationGridStack2D grids_;
 };
 
+// A box holding every cell of `limits` (the matcher's) that Match(initial_pose, cloud, ...)
+// with `options` reads, at any depth: each point of `cloud` turned within the angular window
+// and moved within the linear one, plus a cell for rounding. A matcher over a stack built for
+// these cells only (PrecomputationGridStack2D's `reads`) answers as one over the whole grid.
+CellBox CellsReadByMatch(const MapLimits& limits,
+                         const FastCorrelativeScanMatcherOptions2D& options,
+                         const common::Rigid2d& initial_pose, const sensor::PointCloud2d& cloud);
+
 }  // namespace mapping
 }  // namespace fusemap
 

@@ -38,7 +38,8 @@ struct InitialMatchOptions2D {
   double near_linear_search_window_m = 0.5;
   double near_angular_search_window_rad = 0.2;
   // The precomputation grids of the matching submap are rebuilt once it has had this many
-  // insertions since they were built (and always when the matching submap changes). 1 keeps
+  // insertions since they were built (and always when the matching submap changes, or a
+  // search reads cells they were not built for: they cover the search's cells only). 1 keeps
   // the search against the current grid, so a builder restored from a checkpoint (which starts
   // with no grids) continues exactly; larger values trade that for less precomputation.
   int refresh_every_n_insertions = 1;
@@ -102,6 +103,9 @@ class InitialMatcher2D {
   // could reuse a freed one's address).
   std::weak_ptr<const Submap2D> cached_submap_;
   int cached_num_range_data_ = 0;
+  // The grids' layout, and the cells (of it) they were built for.
+  MapLimits cached_limits_;
+  CellBox cached_reads_;
   std::unique_ptr<FastCorrelativeScanMatcher2D> matcher_;
   std::unique_ptr<FastCorrelativeScanMatcher2D> local_matcher_;  // if min_score_gain > 0
   // The previous grids' storage, which each rebuild reuses.

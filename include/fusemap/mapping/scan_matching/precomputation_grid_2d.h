@@ -34,9 +34,13 @@ class PrecomputationBuffers {
   std::vector<uint8_t> Take(size_t size);
   void Give(std::vector<uint8_t> buffer);
   size_t count() const { return buffers_.size(); }
+  // The precomputation value of each raw cell value (kUnknownValue as kMinProbability), made
+  // on first use: 32768 conversions, which cost as much as a wide search's whole base level.
+  const std::vector<uint8_t>& quantisation_table();
 
  private:
   std::vector<std::vector<uint8_t>> buffers_;
+  std::vector<uint8_t> quantisation_table_;
 };
 
 // Cells min_cell + [0, num_x_cells) x [0, num_y_cells) of a grid; the box may reach past the
@@ -96,8 +100,10 @@ class PrecomputationGrid2D {
   // Values for blocks min_block .. min_block + size - 1 (per axis) of 2^block_shift cells.
   PrecomputationGrid2D(int width_cells, int block_shift, const Eigen::Array2i& min_block,
                        int size_x, int size_y, std::vector<uint8_t> values);
-  // Depth 0 over `box` of `grid`, in `values` (resized).
-  PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box, float unknown_probability,
+  // Depth 0 over `box` of `grid`, in `values` (resized): its cells `stored` (in the box's
+  // indices, inside the box) only, 0 elsewhere as off the grid.
+  PrecomputationGrid2D(const ProbabilityGrid& grid, const CellBox& box, const CellBox& stored,
+                       float unknown_probability, const std::vector<uint8_t>& quantisation_table,
                        std::vector<uint8_t> values);
 
   int width_cells_;
@@ -122,6 +128,13 @@ class PrecomputationGridStack2D {
   // rebuilds its stack over the known part of the growing submap after every insertion.
   PrecomputationGridStack2D(const ProbabilityGrid& grid, const CellBox& box,
                             float unknown_probability, int max_depth,
+                            PrecomputationBuffers* buffers = nullptr);
+  // As above, for searches that read only the cells `reads` (the stack's indices) at any
+  // depth: GetValue there is as above, and elsewhere unspecified. Built from the part of the
+  // box those windows reach, not the whole box: local SLAM's wide search reads a few metres
+  // around one scan, while an open hall's submap spans tens of metres (orebro: a tenth of it).
+  PrecomputationGridStack2D(const ProbabilityGrid& grid, const CellBox& box,
+                            float unknown_probability, int max_depth, const CellBox& reads,
                             PrecomputationBuffers* buffers = nullptr);
 
   // Hands every depth's storage to `buffers` for the next stack; this one is left empty
