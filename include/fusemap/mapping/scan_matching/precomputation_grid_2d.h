@@ -132,7 +132,8 @@ class PrecomputationGridStack2D {
   // As above, for searches that read only the cells `reads` (the stack's indices) at any
   // depth: GetValue there is as above, and elsewhere unspecified. Built from the part of the
   // box those windows reach, not the whole box: local SLAM's wide search reads a few metres
-  // around one scan, while an open hall's submap spans tens of metres (orebro: a tenth of it).
+  // around one scan, while an open hall's submap spans tens of metres (orebro: a scan's box
+  // is a median 8 % of its submap's known area).
   PrecomputationGridStack2D(const ProbabilityGrid& grid, const CellBox& box,
                             float unknown_probability, int max_depth, const CellBox& reads,
                             PrecomputationBuffers* buffers = nullptr);
