@@ -295,7 +295,7 @@ TEST(PrecomputationGridStack2DTest, StackOverABoxEqualsStackOverItsCopy) {
 
 // A stack built for the cells a search reads holds, at every depth (exact and blocked), the
 // values of the stack over the whole box at those cells: reads inside the box, across its
-// edges, off it, and with the grid's own storage recycled between the two.
+// edges, off it, and in storage recycled from one case to the next.
 TEST(PrecomputationGridStack2DTest, StackForTheCellsReadEqualsTheWholeStackThere) {
   const ProbabilityGrid grid = MakeRandomGrid(250, 200, 12);
   const CellBox box{Eigen::Array2i(-5, -3), 257, 210};
